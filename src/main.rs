@@ -1,0 +1,193 @@
+//! posture-opt command line: parses arguments, calls the library, prints. Exit codes: 0 ok,
+//! 2 bad input, 1 internal failure.
+
+use anyhow::{anyhow, Context, Result};
+use clap::{Parser, Subcommand};
+use posture_opt::fatigue::{FatigueError, MaParams};
+use posture_opt::validation::{dynamic_validation, plots, static_validation};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "posture-opt", version, about = "Fatigue-aware posture planning (Ma et al. 2009 dynamic muscle fatigue model)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Reproduce the paper's validations.
+    Validate {
+        #[command(subcommand)]
+        which: ValidateWhich,
+    },
+    /// Maximum endurance time and the capacity / fatigue-index curve for a held load.
+    Met {
+        /// Relative load f = F_load/MVC in (0, 1], or a range START:END:STEP.
+        #[arg(long)]
+        fmvc: String,
+        /// Fatigue rate k [1/min].
+        #[arg(long, default_value_t = 1.0)]
+        k_per_min: f64,
+        /// Recovery rate R [1/min] (0 = the paper's model).
+        #[arg(long, default_value_t = 0.0)]
+        r_per_min: f64,
+        /// Samples of the curve between 0 and the endurance time.
+        #[arg(long, default_value_t = 10)]
+        points: usize,
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(Subcommand)]
+enum ValidateWhich {
+    /// Table 2: Eq. 8 against 24 published MET models (Pearson r, ICC).
+    Static {
+        #[arg(long, default_value_t = 1.0)]
+        k_per_min: f64,
+        #[arg(long)]
+        json: bool,
+        /// Write SVG figures (paper Fig. 1-8) into this directory.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+    /// §4: Liu et al. at MVC, Freund-Takala, Wexler's trend, Frey-Law & Avin endurance curves.
+    Dynamic {
+        #[arg(long, default_value_t = 1.0)]
+        k_per_min: f64,
+        #[arg(long)]
+        json: bool,
+        /// Write SVG figures (paper Fig. 10 and endurance curves) into this directory.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+}
+
+/// An error caused by the user's input (exit 2).
+#[derive(Debug)]
+struct BadInput(String);
+impl std::fmt::Display for BadInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+impl std::error::Error for BadInput {}
+
+fn bad(msg: impl Into<String>) -> anyhow::Error {
+    anyhow!(BadInput(msg.into()))
+}
+
+fn lib_err(e: impl Into<posture_opt::Error>) -> anyhow::Error {
+    let e: posture_opt::Error = e.into();
+    if e.is_bad_input() {
+        bad(e.to_string())
+    } else {
+        anyhow!(e)
+    }
+}
+
+fn check_k(k: f64) -> Result<MaParams> {
+    MaParams::new(k, 0.0).map_err(|e| bad(format!("--k-per-min: {e}")))
+}
+
+fn parse_fmvc(s: &str) -> Result<Vec<f64>> {
+    let num = |t: &str| -> Result<f64> {
+        t.trim()
+            .parse::<f64>()
+            .map_err(|_| bad(format!("--fmvc: '{t}' is not a number")))
+    };
+    let values = match s.split(':').collect::<Vec<_>>().as_slice() {
+        [one] => vec![num(one)?],
+        [a, b, c] => {
+            let (a, b, c) = (num(a)?, num(b)?, num(c)?);
+            if !(c.is_finite() && c > 0.0) || !(a.is_finite() && b.is_finite()) || b < a {
+                return Err(bad(format!("--fmvc: range '{s}' needs START <= END and STEP > 0")));
+            }
+            let n = ((b - a) / c + 1e-9).floor() as usize;
+            if n > 10_000 {
+                return Err(bad(format!("--fmvc: range '{s}' has more than 10000 levels")));
+            }
+            (0..=n).map(|i| a + c * i as f64).collect()
+        }
+        _ => return Err(bad(format!("--fmvc: '{s}' is neither a number nor START:END:STEP"))),
+    };
+    for &f in &values {
+        if !(f.is_finite() && f > 0.0 && f <= 1.0) {
+            return Err(lib_err(FatigueError::BadLoad { what: "--fmvc", value: f }));
+        }
+    }
+    Ok(values)
+}
+
+fn print_json(v: &impl serde::Serialize) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    serde_json::to_writer_pretty(&mut out, v)?;
+    writeln!(out)?;
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Validate { which: ValidateWhich::Static { k_per_min, json, plot } } => {
+            check_k(k_per_min)?;
+            let v = static_validation(k_per_min);
+            if let Some(dir) = &plot {
+                let files = plots::static_figures(&v, dir).map_err(lib_err)?;
+                eprintln!("wrote {} figures into {}", files.len(), dir.display());
+            }
+            if json {
+                print_json(&v)
+            } else {
+                print!("{}", posture_opt::validation::report::static_table(&v));
+                Ok(())
+            }
+        }
+        Command::Validate { which: ValidateWhich::Dynamic { k_per_min, json, plot } } => {
+            check_k(k_per_min)?;
+            let v = dynamic_validation(k_per_min);
+            if let Some(dir) = &plot {
+                let files = plots::dynamic_figures(&v, dir).map_err(lib_err)?;
+                eprintln!("wrote {} figures into {}", files.len(), dir.display());
+            }
+            if json {
+                print_json(&v)
+            } else {
+                print!("{}", posture_opt::validation::report::dynamic_table(&v));
+                Ok(())
+            }
+        }
+        Command::Met { fmvc, k_per_min, r_per_min, points, json } => {
+            let p = MaParams::new(k_per_min, r_per_min).map_err(lib_err)?;
+            if points == 0 || points > 100_000 {
+                return Err(bad("--points must be between 1 and 100000"));
+            }
+            let levels = parse_fmvc(&fmvc)?;
+            let report = posture_opt::fatigue::met_report(&p, &levels, points);
+            if json {
+                print_json(&report)
+            } else {
+                print!("{}", posture_opt::validation::report::met_table(&report));
+                Ok(())
+            }
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli).context("posture-opt") {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let bad_input = e.chain().any(|c| c.downcast_ref::<BadInput>().is_some());
+            eprintln!("error: {}", e.root_cause());
+            if bad_input {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
+        }
+    }
+}

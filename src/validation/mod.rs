@@ -1,0 +1,11 @@
+//! The paper's validations, reproduced: static (§3, Table 2) and dynamic (§4), plus the
+//! Frey-Law & Avin (2010) endurance curves and the three-compartment model as extra anchors.
+//! Results are plain data (serde) for the CLI's tables, JSON and SVG figures.
+
+pub mod dynamic;
+pub mod plots;
+pub mod report;
+pub mod static_table;
+
+pub use dynamic::{dynamic_validation, DynamicValidation};
+pub use static_table::{static_validation, StaticValidation};
