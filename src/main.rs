@@ -10,7 +10,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "posture-opt", version, about = "Fatigue-aware posture planning (Ma et al. 2009 dynamic muscle fatigue model)")]
+#[command(
+    name = "posture-opt",
+    version,
+    about = "Fatigue-aware posture planning (Ma et al. 2009 dynamic muscle fatigue model)"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -103,20 +107,31 @@ fn parse_fmvc(s: &str) -> Result<Vec<f64>> {
         [one] => vec![num(one)?],
         [a, b, c] => {
             let (a, b, c) = (num(a)?, num(b)?, num(c)?);
-            if !(c.is_finite() && c > 0.0) || !(a.is_finite() && b.is_finite()) || b < a {
-                return Err(bad(format!("--fmvc: range '{s}' needs START <= END and STEP > 0")));
+            if !(c.is_finite() && c > 0.0 && a.is_finite() && b.is_finite()) || b < a {
+                return Err(bad(format!(
+                    "--fmvc: range '{s}' needs START <= END and STEP > 0"
+                )));
             }
             let n = ((b - a) / c + 1e-9).floor() as usize;
             if n > 10_000 {
-                return Err(bad(format!("--fmvc: range '{s}' has more than 10000 levels")));
+                return Err(bad(format!(
+                    "--fmvc: range '{s}' has more than 10000 levels"
+                )));
             }
             (0..=n).map(|i| a + c * i as f64).collect()
         }
-        _ => return Err(bad(format!("--fmvc: '{s}' is neither a number nor START:END:STEP"))),
+        _ => {
+            return Err(bad(format!(
+                "--fmvc: '{s}' is neither a number nor START:END:STEP"
+            )))
+        }
     };
     for &f in &values {
         if !(f.is_finite() && f > 0.0 && f <= 1.0) {
-            return Err(lib_err(FatigueError::BadLoad { what: "--fmvc", value: f }));
+            return Err(lib_err(FatigueError::BadLoad {
+                what: "--fmvc",
+                value: f,
+            }));
         }
     }
     Ok(values)
@@ -131,7 +146,14 @@ fn print_json(v: &impl serde::Serialize) -> Result<()> {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Validate { which: ValidateWhich::Static { k_per_min, json, plot } } => {
+        Command::Validate {
+            which:
+                ValidateWhich::Static {
+                    k_per_min,
+                    json,
+                    plot,
+                },
+        } => {
             check_k(k_per_min)?;
             let v = static_validation(k_per_min);
             if let Some(dir) = &plot {
@@ -145,7 +167,14 @@ fn run(cli: Cli) -> Result<()> {
                 Ok(())
             }
         }
-        Command::Validate { which: ValidateWhich::Dynamic { k_per_min, json, plot } } => {
+        Command::Validate {
+            which:
+                ValidateWhich::Dynamic {
+                    k_per_min,
+                    json,
+                    plot,
+                },
+        } => {
             check_k(k_per_min)?;
             let v = dynamic_validation(k_per_min);
             if let Some(dir) = &plot {
@@ -159,7 +188,13 @@ fn run(cli: Cli) -> Result<()> {
                 Ok(())
             }
         }
-        Command::Met { fmvc, k_per_min, r_per_min, points, json } => {
+        Command::Met {
+            fmvc,
+            k_per_min,
+            r_per_min,
+            points,
+            json,
+        } => {
             let p = MaParams::new(k_per_min, r_per_min).map_err(lib_err)?;
             if points == 0 || points > 100_000 {
                 return Err(bad("--points must be between 1 and 100000"));

@@ -125,14 +125,17 @@ impl MaParams {
         if lambda <= 0.0 || t_min <= 0.0 {
             return;
         }
-        let c_inf = r / lambda;
-        let decay = (-lambda * t_min).exp();
+        let inv_lambda = 1.0 / lambda;
+        let c_inf = r * inv_lambda;
+        // x1 - 1 = e^{λt} - 1 without cancellation; e^{-λt} = 1 / x1 reuses it.
+        let xm1 = (lambda * t_min).exp_m1();
+        let decay = 1.0 / (1.0 + xm1);
         let c1 = (c_inf + (c0 - c_inf) * decay).clamp(C_FLOOR, 1.0);
         if f > 0.0 {
-            // x1 - 1 = e^{λt} - 1, computed without cancellation.
-            let xm1 = (lambda * t_min).exp_m1();
-            let w = c_inf * xm1 / c0;
-            let du = f / lambda * (xm1 / (c0 * c0 * (1.0 + w)) + g_of_w(w) * (xm1 / c0) * (xm1 / c0));
+            let inv_c0 = 1.0 / c0;
+            let y = xm1 * inv_c0;
+            let w = c_inf * y;
+            let du = f * inv_lambda * y * (inv_c0 / (1.0 + w) + g_of_w(w) * y);
             let u = state.fatigue_u_min + du;
             state.fatigue_u_min = if u.is_finite() { u } else { f64::MAX };
         }
@@ -175,7 +178,8 @@ impl MaParams {
     /// assert!((met - 2.0 * 2f64.ln()).abs() < 1e-12); // -ln(0.5)/0.5
     /// ```
     pub fn met_min(&self, f: f64) -> Option<f64> {
-        self.time_to_exhaustion_s(1.0, f).map(super::units::s_to_min)
+        self.time_to_exhaustion_s(1.0, f)
+            .map(super::units::s_to_min)
     }
 }
 
@@ -200,11 +204,28 @@ impl MaParams {
         let dt = t_end_s / n as f64;
         let mut s = MaState::FRESH;
         let mut out = Vec::with_capacity(n + 1);
-        out.push(CurvePoint { t_s: 0.0, capacity: s.capacity, fatigue_u_min: s.fatigue_u_min });
+        out.push(CurvePoint {
+            t_s: 0.0,
+            capacity: s.capacity,
+            fatigue_u_min: s.fatigue_u_min,
+        });
         for i in 1..=n {
             self.hold(&mut s, f, dt);
-            out.push(CurvePoint { t_s: dt * i as f64, capacity: s.capacity, fatigue_u_min: s.fatigue_u_min });
+            out.push(CurvePoint {
+                t_s: dt * i as f64,
+                capacity: s.capacity,
+                fatigue_u_min: s.fatigue_u_min,
+            });
         }
         out
+    }
+}
+
+/// Holds `loads[i]` on muscle group `i` (parameters `params[i]`, state `states[i]`) for `dt_s`.
+/// The three slices must be equally long (shorter ones bound the loop).
+#[inline]
+pub fn hold_all(params: &[MaParams], states: &mut [MaState], loads: &[f64], dt_s: f64) {
+    for ((p, s), &f) in params.iter().zip(states.iter_mut()).zip(loads) {
+        p.hold(s, f, dt_s);
     }
 }

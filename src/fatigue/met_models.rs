@@ -30,7 +30,7 @@ impl MetEquation {
     /// The equation as text.
     pub fn describe(&self) -> String {
         match *self {
-            MetEquation::Power { a, b, shift } if shift == 0.0 => format!("{a}·f^-{b}"),
+            MetEquation::Power { a, b, shift: 0.0 } => format!("{a}·f^-{b}"),
             MetEquation::Power { a, b, shift } => format!("{a}·(f-{shift})^-{b}"),
             MetEquation::Exp { a, b } => format!("{a}·exp(-{b}·f)"),
             MetEquation::RohmertGeneral => "-1.5 + 2.1/f - 0.6/f² + 0.1/f³".to_string(),
@@ -78,10 +78,26 @@ const fn ex(a: f64, b: f64) -> MetEquation {
 
 macro_rules! row {
     ($id:expr, $g:expr, $ref:expr, $eq:expr, $r:expr, $icc:expr) => {
-        MetModel { id: $id, group: $g, reference: $ref, equation: $eq, published_r: $r, published_icc: $icc, deviation: None }
+        MetModel {
+            id: $id,
+            group: $g,
+            reference: $ref,
+            equation: $eq,
+            published_r: $r,
+            published_icc: $icc,
+            deviation: None,
+        }
     };
     ($id:expr, $g:expr, $ref:expr, $eq:expr, $r:expr, $icc:expr, $dev:expr) => {
-        MetModel { id: $id, group: $g, reference: $ref, equation: $eq, published_r: $r, published_icc: $icc, deviation: Some($dev) }
+        MetModel {
+            id: $id,
+            group: $g,
+            reference: $ref,
+            equation: $eq,
+            published_r: $r,
+            published_icc: $icc,
+            deviation: Some($dev),
+        }
     };
 }
 

@@ -15,7 +15,7 @@ pub mod three_compartment;
 pub mod units;
 
 pub use held_load::{met_report, HeldLoad, MetReport};
-pub use ma::{met_min, CurvePoint, FatigueError, MaParams, MaState};
+pub use ma::{hold_all, met_min, CurvePoint, FatigueError, MaParams, MaState};
 pub use three_compartment::{Region, ThreeCompartment, ThreeCompartmentState};
 
 /// A fatigue model behind one interface: hold a relative load for a while, read capacity and U.

@@ -145,7 +145,11 @@ impl ThreeCompartment {
         } else {
             self.r_per_s * self.rest_multiplier
         };
-        [c - self.f_per_s * ma, -c + r * mf, self.f_per_s * ma - r * mf]
+        [
+            c - self.f_per_s * ma,
+            -c + r * mf,
+            self.f_per_s * ma - r * mf,
+        ]
     }
 
     /// Holds target load `f` for `dt_s` seconds (RK4, fixed sub-steps).

@@ -129,9 +129,21 @@ fn liu(k_per_min: f64) -> LiuValidation {
     let cases = [(10.0, 0.0), (100.0, 0.0), (1000.0, 0.0), (100.0, 0.1)]
         .iter()
         .map(|&(beta, gamma)| {
-            let cap: Vec<f64> = t_s.iter().map(|&t| liu_capacity(t, f_per_s, beta, gamma)).collect();
-            let max_abs_diff = cap.iter().zip(&model).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-            LiuCase { beta, gamma, max_abs_diff, capacity: cap }
+            let cap: Vec<f64> = t_s
+                .iter()
+                .map(|&t| liu_capacity(t, f_per_s, beta, gamma))
+                .collect();
+            let max_abs_diff = cap
+                .iter()
+                .zip(&model)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            LiuCase {
+                beta,
+                gamma,
+                max_abs_diff,
+                capacity: cap,
+            }
         })
         .collect();
     LiuValidation {
@@ -178,7 +190,8 @@ fn wexler(k_per_min: f64) -> WexlerValidation {
         })
         .collect();
     let trend_reproduced = levels.windows(2).all(|w| {
-        w[1].initial_slope_per_min < w[0].initial_slope_per_min && w[1].half_capacity_min < w[0].half_capacity_min
+        w[1].initial_slope_per_min < w[0].initial_slope_per_min
+            && w[1].half_capacity_min < w[0].half_capacity_min
     });
     WexlerValidation {
         note: "Wexler et al.'s Ca2+ model cannot be compared quantitatively (stimulated, not voluntary, contractions); the paper's claim is the trend: higher load, faster decline.".into(),

@@ -35,14 +35,23 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
         let rows: Vec<_> = v
             .models
             .iter()
-            .filter(|m| groups.contains(&m.group.as_str()) && m.id != "huijgens" && m.id != "sjogaard")
+            .filter(|m| {
+                groups.contains(&m.group.as_str()) && m.id != "huijgens" && m.id != "sjogaard"
+            })
             .collect();
         let path = dir.join(format!("fig{}-met-{slug}.svg", 2 * i + 1));
         {
             let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| err(&path, e))?;
             let mut chart = ChartBuilder::on(&root)
-                .caption(format!("Fig. {}: endurance time, {title} and Eq. 8 (k = {})", 2 * i + 1, v.k_per_min), ("sans-serif", 22))
+                .caption(
+                    format!(
+                        "Fig. {}: endurance time, {title} and Eq. 8 (k = {})",
+                        2 * i + 1,
+                        v.k_per_min
+                    ),
+                    ("sans-serif", 22),
+                )
                 .margin(15)
                 .x_label_area_size(45)
                 .y_label_area_size(60)
@@ -67,7 +76,9 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
                     .draw_series(LineSeries::new(pts, color.stroke_width(2)))
                     .map_err(|e| err(&path, e))?
                     .label(format!("{} ({})", m.reference, m.id))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
             }
             let dyn_pts: Vec<(f64, f64)> = v
                 .fmvc
@@ -80,7 +91,9 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
                 .draw_series(LineSeries::new(dyn_pts, BLACK.stroke_width(4)))
                 .map_err(|e| err(&path, e))?
                 .label("dynamic model, Eq. 8")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(4)));
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(4))
+                });
             chart
                 .configure_series_labels()
                 .background_style(WHITE.mix(0.85))
@@ -98,7 +111,13 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
             let root = SVGBackend::new(&path, (900, 500)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| err(&path, e))?;
             let mut chart = ChartBuilder::on(&root)
-                .caption(format!("Fig. {}: ICC with Eq. 8, {title} (bars: computed, dots: printed)", 2 * i + 2), ("sans-serif", 20))
+                .caption(
+                    format!(
+                        "Fig. {}: ICC with Eq. 8, {title} (bars: computed, dots: printed)",
+                        2 * i + 2
+                    ),
+                    ("sans-serif", 20),
+                )
                 .margin(15)
                 .x_label_area_size(60)
                 .y_label_area_size(50)
@@ -127,7 +146,9 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
                 }))
                 .map_err(|e| err(&path, e))?;
             chart
-                .draw_series(rows.iter().enumerate().map(|(j, m)| Circle::new((j as f64 + 0.5, m.published_icc), 5, BLACK.filled())))
+                .draw_series(rows.iter().enumerate().map(|(j, m)| {
+                    Circle::new((j as f64 + 0.5, m.published_icc), 5, BLACK.filled())
+                }))
                 .map_err(|e| err(&path, e))?;
             root.present().map_err(|e| err(&path, e))?;
         }
@@ -145,7 +166,10 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
         let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&path, e))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption("Fig. 10: capacity at MVC, active-motor model (Liu et al.) vs dynamic model", ("sans-serif", 20))
+            .caption(
+                "Fig. 10: capacity at MVC, active-motor model (Liu et al.) vs dynamic model",
+                ("sans-serif", 20),
+            )
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(60)
@@ -160,10 +184,18 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
         for (j, c) in v.liu.cases.iter().enumerate() {
             let color = Palette99::pick(j + 1).to_rgba();
             chart
-                .draw_series(LineSeries::new(v.liu.t_s.iter().copied().zip(c.capacity.iter().copied()), color.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    v.liu.t_s.iter().copied().zip(c.capacity.iter().copied()),
+                    color.stroke_width(2),
+                ))
                 .map_err(|e| err(&path, e))?
-                .label(format!("Liu et al., beta = {}, gamma = {}", c.beta, c.gamma))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                .label(format!(
+                    "Liu et al., beta = {}, gamma = {}",
+                    c.beta, c.gamma
+                ))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
         }
         chart
             .draw_series(
@@ -192,7 +224,10 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
         let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&path, e))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption("Endurance time: Frey-Law & Avin (2010) per region vs Eq. 8", ("sans-serif", 20))
+            .caption(
+                "Endurance time: Frey-Law & Avin (2010) per region vs Eq. 8",
+                ("sans-serif", 20),
+            )
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(60)
@@ -206,14 +241,28 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
             .map_err(|e| err(&path, e))?;
         for (j, a) in v.frey_law_avin.iter().enumerate() {
             let color = Palette99::pick(j).to_rgba();
-            let pts: Vec<(f64, f64)> = (21..=99).map(|i| (i as f64, a.b0_s * (i as f64 / 100.0).powf(a.b1) / 60.0)).collect();
+            let pts: Vec<(f64, f64)> = (21..=99)
+                .map(|i| (i as f64, a.b0_s * (i as f64 / 100.0).powf(a.b1) / 60.0))
+                .collect();
             chart
                 .draw_series(LineSeries::new(pts, color.stroke_width(2)))
                 .map_err(|e| err(&path, e))?
-                .label(format!("{} (fitted k = {:.2} /min)", a.region, a.fitted_k_per_min))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                .label(format!(
+                    "{} (fitted k = {:.2} /min)",
+                    a.region, a.fitted_k_per_min
+                ))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
         }
-        let pts: Vec<(f64, f64)> = (21..=99).map(|i| (i as f64, crate::fatigue::met_min(i as f64 / 100.0, v.k_per_min))).collect();
+        let pts: Vec<(f64, f64)> = (21..=99)
+            .map(|i| {
+                (
+                    i as f64,
+                    crate::fatigue::met_min(i as f64 / 100.0, v.k_per_min),
+                )
+            })
+            .collect();
         chart
             .draw_series(LineSeries::new(pts, BLACK.stroke_width(4)))
             .map_err(|e| err(&path, e))?

@@ -16,7 +16,11 @@ pub fn static_table(v: &StaticValidation) -> String {
         g[g.len() - 1],
         g.len()
     );
-    let _ = writeln!(s, "{:<22} {:<9} {:>8} {:>8} {:>8} {:>8}  verdict", "model", "group", "r", "r pub", "ICC", "ICC pub");
+    let _ = writeln!(
+        s,
+        "{:<22} {:<9} {:>8} {:>8} {:>8} {:>8}  verdict",
+        "model", "group", "r", "r pub", "ICC", "ICC pub"
+    );
     for m in &v.models {
         let _ = writeln!(
             s,
@@ -29,10 +33,17 @@ pub fn static_table(v: &StaticValidation) -> String {
                 "{:<32} with {}{}: r = {:.4}, ICC = {:.4} -> {}",
                 "",
                 e.equation,
-                e.row.as_ref().map(|r| format!(" (equation of {r})")).unwrap_or_default(),
+                e.row
+                    .as_ref()
+                    .map(|r| format!(" (equation of {r})"))
+                    .unwrap_or_default(),
                 e.r,
                 e.icc,
-                if e.reproduces { "reproduces the printed figures" } else { "does not reproduce" }
+                if e.reproduces {
+                    "reproduces the printed figures"
+                } else {
+                    "does not reproduce"
+                }
             );
             let _ = writeln!(s, "{:<32} {}", "", e.explanation);
         }
@@ -51,26 +62,65 @@ pub fn static_table(v: &StaticValidation) -> String {
 /// The dynamic validations as text.
 pub fn dynamic_table(v: &DynamicValidation) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "Dynamic validation (Ma et al. 2009, section 4), k = {} /min\n", v.k_per_min);
-    let _ = writeln!(s, "1. Liu et al. (2002) active-motor model at MVC, 0-180 s, F = {:.5} /s", v.liu.f_per_s);
+    let _ = writeln!(
+        s,
+        "Dynamic validation (Ma et al. 2009, section 4), k = {} /min\n",
+        v.k_per_min
+    );
+    let _ = writeln!(
+        s,
+        "1. Liu et al. (2002) active-motor model at MVC, 0-180 s, F = {:.5} /s",
+        v.liu.f_per_s
+    );
     let _ = writeln!(s, "   {}", v.liu.note);
     for c in &v.liu.cases {
-        let _ = writeln!(s, "   beta = {:>6}, gamma = {:>4}: max |Liu - model| = {:.5}", c.beta, c.gamma, c.max_abs_diff);
+        let _ = writeln!(
+            s,
+            "   beta = {:>6}, gamma = {:>4}: max |Liu - model| = {:.5}",
+            c.beta, c.gamma, c.max_abs_diff
+        );
     }
     let ft = &v.freund_takala;
-    let _ = writeln!(s, "\n2. Freund & Takala (2001) reservoir model (Eq. 11)\n   {}", ft.note);
+    let _ = writeln!(
+        s,
+        "\n2. Freund & Takala (2001) reservoir model (Eq. 11)\n   {}",
+        ft.note
+    );
     let _ = writeln!(
         s,
         "   depletion form fitted: beta = {:.4} /min; against Eq. 8 on f = 0.21..0.99: r = {:.4}, ICC = {:.4}",
         ft.beta_per_min, ft.r, ft.icc
     );
-    let _ = writeln!(s, "\n3. Wexler et al. (1997): higher load, faster decline\n   {}", v.wexler.note);
-    let _ = writeln!(s, "   {:>6} {:>18} {:>18}", "f", "dc/dt(0) [1/min]", "c = 0.5 at [min]");
+    let _ = writeln!(
+        s,
+        "\n3. Wexler et al. (1997): higher load, faster decline\n   {}",
+        v.wexler.note
+    );
+    let _ = writeln!(
+        s,
+        "   {:>6} {:>18} {:>18}",
+        "f", "dc/dt(0) [1/min]", "c = 0.5 at [min]"
+    );
     for l in &v.wexler.levels {
-        let _ = writeln!(s, "   {:>6.2} {:>18.3} {:>18.3}", l.fmvc, l.initial_slope_per_min, l.half_capacity_min);
+        let _ = writeln!(
+            s,
+            "   {:>6.2} {:>18.3} {:>18.3}",
+            l.fmvc, l.initial_slope_per_min, l.half_capacity_min
+        );
     }
-    let _ = writeln!(s, "   trend reproduced: {}", if v.wexler.trend_reproduced { "yes" } else { "NO" });
-    let _ = writeln!(s, "\n4. Frey-Law & Avin (2010) endurance curves ET = b0 f^b1 against Eq. 8 (f = 0.21..0.99)");
+    let _ = writeln!(
+        s,
+        "   trend reproduced: {}",
+        if v.wexler.trend_reproduced {
+            "yes"
+        } else {
+            "NO"
+        }
+    );
+    let _ = writeln!(
+        s,
+        "\n4. Frey-Law & Avin (2010) endurance curves ET = b0 f^b1 against Eq. 8 (f = 0.21..0.99)"
+    );
     let _ = writeln!(
         s,
         "   {:<9} {:>7} {:>6} {:>8} {:>9} {:>12} {:>12} {:>14}",
@@ -80,7 +130,14 @@ pub fn dynamic_table(v: &DynamicValidation) -> String {
         let _ = writeln!(
             s,
             "   {:<9} {:>7.2} {:>6.2} {:>8.4} {:>9.4} {:>12.3} {:>12.4} {:>14.1}",
-            a.region, a.b0_s, a.b1, a.r, a.icc_k1, a.fitted_k_per_min, a.icc_fitted_k, a.three_compartment_rms_s
+            a.region,
+            a.b0_s,
+            a.b1,
+            a.r,
+            a.icc_k1,
+            a.fitted_k_per_min,
+            a.icc_fitted_k,
+            a.three_compartment_rms_s
         );
     }
     let _ = writeln!(
@@ -93,19 +150,37 @@ pub fn dynamic_table(v: &DynamicValidation) -> String {
 /// `met` output as text.
 pub fn met_table(r: &MetReport) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "k = {} /min, R = {} /min", r.k_per_min, r.recovery_per_min);
+    let _ = writeln!(
+        s,
+        "k = {} /min, R = {} /min",
+        r.k_per_min, r.recovery_per_min
+    );
     for l in &r.levels {
         match l.met_min {
             Some(m) => {
-                let _ = writeln!(s, "\nf = {:.3}: MET = {:.3} min ({:.1} s)", l.fmvc, m, m * 60.0);
+                let _ = writeln!(
+                    s,
+                    "\nf = {:.3}: MET = {:.3} min ({:.1} s)",
+                    l.fmvc,
+                    m,
+                    m * 60.0
+                );
             }
             None => {
-                let _ = writeln!(s, "\nf = {:.3}: held indefinitely (recovery balances the load)", l.fmvc);
+                let _ = writeln!(
+                    s,
+                    "\nf = {:.3}: held indefinitely (recovery balances the load)",
+                    l.fmvc
+                );
             }
         }
         let _ = writeln!(s, "  {:>10} {:>10} {:>12}", "t [s]", "capacity", "U [min]");
         for p in &l.curve {
-            let _ = writeln!(s, "  {:>10.2} {:>10.4} {:>12.4}", p.t_s, p.capacity, p.fatigue_u_min);
+            let _ = writeln!(
+                s,
+                "  {:>10.2} {:>10.4} {:>12.4}",
+                p.t_s, p.capacity, p.fatigue_u_min
+            );
         }
     }
     s

@@ -1,8 +1,8 @@
 //! Static validation (paper §3): MET of Eq. 8 against the 24 models of Table 2.
 
+use crate::fatigue::met_min;
 use crate::fatigue::met_models::{table2_grid, Deviation, MetModel, TABLE2};
 use crate::fatigue::stats::{icc_oneway, pearson_r};
-use crate::fatigue::met_min;
 use serde::Serialize;
 
 /// Agreement needed to call a printed figure reproduced (Table 2 prints 4 decimals; the
@@ -69,9 +69,13 @@ pub fn static_validation(k_per_min: f64) -> StaticValidation {
             let (met, r, icc) = stats(&m.equation);
             let evidence = m.deviation.map(|d| {
                 let (explanation, eq, row) = match d {
-                    Deviation::Equation { equation, explanation } => (explanation, equation, None),
+                    Deviation::Equation {
+                        equation,
+                        explanation,
+                    } => (explanation, equation, None),
                     Deviation::FiguresOfRow { id, explanation } => {
-                        let other = crate::fatigue::met_models::by_id(id).expect("row ids are static");
+                        let other =
+                            crate::fatigue::met_models::by_id(id).expect("row ids are static");
                         (explanation, other.equation, Some(id.to_string()))
                     }
                 };

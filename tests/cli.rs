@@ -1,0 +1,153 @@
+//! The command line: exit codes and the JSON contract of DESIGN §6.
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_posture-opt"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn validate_static_json_contract() {
+    let (code, out, _) = run(&["validate", "static", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["k_per_min"], 1.0);
+    let grid = v["fmvc"].as_array().unwrap();
+    assert_eq!(grid.len(), 80);
+    assert_eq!(v["dynamic_met_min"].as_array().unwrap().len(), 80);
+    let ids: Vec<&str> = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["id"].as_str().unwrap())
+        .collect();
+    let expected = [
+        "rohmert-general",
+        "monod-scherrer",
+        "huijgens",
+        "sato-general",
+        "manenica-general",
+        "sjogaard",
+        "rose-general",
+        "sato-shoulder",
+        "rohmert-shoulder",
+        "mathiassen-shoulder",
+        "garg-shoulder",
+        "hagberg-elbow",
+        "manenica-elbow",
+        "sato-elbow",
+        "rohmert-elbow",
+        "rose2000-elbow",
+        "rose1992-elbow",
+        "manenica-hand",
+        "manenica-body-pull",
+        "manenica-body-torque",
+        "manenica-back",
+        "rohmert-posture3",
+        "rohmert-posture4",
+        "rohmert-posture5",
+    ];
+    assert_eq!(ids, expected);
+    for m in v["models"].as_array().unwrap() {
+        for key in [
+            "group",
+            "reference",
+            "r",
+            "icc",
+            "published_r",
+            "published_icc",
+        ] {
+            assert!(!m[key].is_null(), "{key} missing in {}", m["id"]);
+        }
+        let met = m["met_min"].as_array().unwrap();
+        assert_eq!(met.len(), 80);
+        assert!(met.iter().all(|x| x.as_f64().is_some_and(f64::is_finite)));
+    }
+    // Sjogaard's equation printed as 0.2997 f^-2.14: check one value by hand at f = 0.5
+    let sj = &v["models"][5];
+    let f05 = grid
+        .iter()
+        .position(|x| (x.as_f64().unwrap() - 0.5).abs() < 1e-12)
+        .unwrap();
+    assert!((sj["met_min"][f05].as_f64().unwrap() - 0.2997 * 0.5f64.powf(-2.14)).abs() < 1e-12);
+}
+
+#[test]
+fn met_single_and_range() {
+    let (code, out, _) = run(&["met", "--fmvc", "0.3", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let met = v["levels"][0]["met_min"].as_f64().unwrap();
+    assert!((met - (-(0.3f64).ln() / 0.3)).abs() < 1e-12);
+    let (code, out, _) = run(&["met", "--fmvc", "0.2:0.8:0.2", "--k-per-min", "2", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let levels = v["levels"].as_array().unwrap();
+    assert_eq!(levels.len(), 4);
+    let met = levels[1]["met_min"].as_f64().unwrap();
+    assert!((met - (-(0.4f64).ln() / (2.0 * 0.4))).abs() < 1e-12);
+    let (code, out, _) = run(&["met", "--fmvc", "0.5"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("MET = 1.386 min"), "{out}");
+}
+
+#[test]
+fn bad_input_exits_2_with_a_message() {
+    for args in [
+        vec!["met", "--fmvc", "1.5"],
+        vec!["met", "--fmvc", "abc"],
+        vec!["met", "--fmvc", "0.5:0.1:0.1"],
+        vec!["met", "--fmvc", "0.3", "--k-per-min", "-1"],
+        vec!["validate", "static", "--k-per-min", "0"],
+        vec!["nonsense"],
+    ] {
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(!err.trim().is_empty());
+        assert!(!err.contains("panicked"));
+    }
+    let (_, _, err) = run(&["met", "--fmvc", "1.5"]);
+    assert!(err.contains("--fmvc") && err.contains("1.5"), "{err}");
+}
+
+#[test]
+fn plots_are_written() {
+    let dir = std::env::temp_dir().join(format!("posture-opt-plots-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let (code, _, err) = run(&["validate", "static", "--plot", d]);
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = run(&["validate", "dynamic", "--plot", d]);
+    assert_eq!(code, 0, "{err}");
+    for f in [
+        "fig1-met-general.svg",
+        "fig2-icc-general.svg",
+        "fig7-met-back-hip.svg",
+        "fig8-icc-back-hip.svg",
+        "fig10-liu-mvc.svg",
+    ] {
+        let s = std::fs::read_to_string(dir.join(f)).unwrap();
+        assert!(
+            s.starts_with("<svg") && s.contains("</svg>") && s.contains("<polyline")
+                || s.contains("<rect"),
+            "{f}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn validate_dynamic_json() {
+    let (code, out, _) = run(&["validate", "dynamic", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["wexler"]["trend_reproduced"], true);
+    assert_eq!(v["frey_law_avin"].as_array().unwrap().len(), 7);
+}
