@@ -14,8 +14,10 @@
 //!   models and the r / ICC statistics.
 //! * [`validation`]: the paper's static and dynamic validations, as data and SVG figures.
 
+pub mod body;
 pub mod error;
 pub mod fatigue;
+pub mod io;
 pub mod validation;
 
 pub use error::Error;

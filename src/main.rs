@@ -3,6 +3,10 @@
 
 use anyhow::{anyhow, Context, Result};
 use clap::{Parser, Subcommand};
+use nalgebra::Vector3;
+use posture_opt::body::{
+    statics_report, worker_urdf, BodyModel, Sex, StrengthTable, Worker, GRAVITY_M_S2,
+};
 use posture_opt::fatigue::{FatigueError, MaParams};
 use posture_opt::validation::{dynamic_validation, plots, static_validation};
 use std::io::Write;
@@ -43,6 +47,44 @@ enum Command {
         points: usize,
         #[arg(long)]
         json: bool,
+    },
+    /// Joint positions, Jacobian and holding torques of any URDF at one posture (DESIGN §6).
+    Statics {
+        /// URDF file.
+        #[arg(long)]
+        robot: PathBuf,
+        /// Link or joint whose frame origin is the hand point.
+        #[arg(long)]
+        frame: String,
+        /// Joint positions NAME=RAD[,NAME=RAD...]; joints not named are at 0.
+        #[arg(long)]
+        q: Option<String>,
+        /// A carried load in the hand [kg] (force = mass × gravity).
+        #[arg(long, conflicts_with = "hand_force")]
+        hand_load_kg: Option<f64>,
+        /// Force the environment applies on the hand, FX,FY,FZ [N], world frame.
+        #[arg(long, allow_hyphen_values = true)]
+        hand_force: Option<String>,
+        /// Gravity GX,GY,GZ [m/s²] (default 0,0,-9.81).
+        #[arg(long, allow_hyphen_values = true)]
+        gravity: Option<String>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write the URDF of a standing worker (and its strength table beside it).
+    Robot {
+        #[arg(long, value_enum)]
+        sex: Sex,
+        #[arg(long)]
+        stature_m: f64,
+        #[arg(long)]
+        mass_kg: f64,
+        /// Strength percentile (1-99) of the worker's sex.
+        #[arg(long, default_value_t = 50.0)]
+        strength_percentile: f64,
+        /// Output URDF file (its strength table goes to NAME.strength.yaml); stdout if absent.
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
 }
 
@@ -137,6 +179,45 @@ fn parse_fmvc(s: &str) -> Result<Vec<f64>> {
     Ok(values)
 }
 
+fn parse_vec3(opt: &str, s: &str) -> Result<Vector3<f64>> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(bad(format!("{opt}: expected X,Y,Z, got '{s}'")));
+    }
+    let mut v = [0.0; 3];
+    for (i, p) in parts.iter().enumerate() {
+        v[i] = p
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| bad(format!("{opt}: '{p}' is not a finite number")))?;
+    }
+    Ok(Vector3::from(v))
+}
+
+fn parse_q(s: &str) -> Result<Vec<(String, f64)>> {
+    s.split(',')
+        .filter(|p| !p.trim().is_empty())
+        .map(|p| {
+            let (name, val) = p
+                .split_once('=')
+                .ok_or_else(|| bad(format!("--q: '{p}' is not NAME=RAD")))?;
+            let v = val
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| {
+                    bad(format!(
+                        "--q: {name}: '{val}' is not a finite number of radians"
+                    ))
+                })?;
+            Ok((name.trim().to_string(), v))
+        })
+        .collect()
+}
+
 fn print_json(v: &impl serde::Serialize) -> Result<()> {
     let mut out = std::io::stdout().lock();
     serde_json::to_writer_pretty(&mut out, v)?;
@@ -186,6 +267,87 @@ fn run(cli: Cli) -> Result<()> {
             } else {
                 print!("{}", posture_opt::validation::report::dynamic_table(&v));
                 Ok(())
+            }
+        }
+        Command::Statics {
+            robot,
+            frame,
+            q,
+            hand_load_kg,
+            hand_force,
+            gravity,
+            json,
+        } => {
+            let model = BodyModel::from_urdf_file(&robot).map_err(lib_err)?;
+            let gravity = match gravity {
+                Some(g) => parse_vec3("--gravity", &g)?,
+                None => GRAVITY_M_S2,
+            };
+            let force = match (hand_load_kg, hand_force) {
+                (Some(m), _) if !(m.is_finite() && m >= 0.0) => {
+                    return Err(bad(format!(
+                        "--hand-load-kg must be finite and >= 0, got {m}"
+                    )))
+                }
+                (Some(m), _) => gravity * m,
+                (None, Some(f)) => parse_vec3("--hand-force", &f)?,
+                (None, None) => Vector3::zeros(),
+            };
+            let q = q.as_deref().map(parse_q).transpose()?.unwrap_or_default();
+            let report = statics_report(&model, &frame, &q, force, gravity)
+                .map_err(|e| bad(format!("{}: {e}", robot.display())))?;
+            if json {
+                print_json(&report)
+            } else {
+                println!(
+                    "frame {} at ({:.4}, {:.4}, {:.4}) m",
+                    report.frame, report.position_m[0], report.position_m[1], report.position_m[2]
+                );
+                println!(
+                    "{:<26} {:>9} {:>12} {:>12} {:>12}",
+                    "joint", "q [rad]", "gravity N·m", "load N·m", "total N·m"
+                );
+                for j in &report.joints {
+                    println!(
+                        "{:<26} {:>9.4} {:>12.3} {:>12.3} {:>12.3}",
+                        j.name, j.q_rad, j.gravity_torque_nm, j.load_torque_nm, j.torque_nm
+                    );
+                }
+                Ok(())
+            }
+        }
+        Command::Robot {
+            sex,
+            stature_m,
+            mass_kg,
+            strength_percentile,
+            out,
+        } => {
+            let w = Worker {
+                sex,
+                stature_m,
+                mass_kg,
+                strength_percentile,
+            };
+            let table = StrengthTable::default_table();
+            let urdf = worker_urdf(&w, &table).map_err(lib_err)?;
+            match out {
+                Some(path) => {
+                    posture_opt::io::write_atomic(&path, urdf.as_bytes())
+                        .map_err(|e| bad(e.to_string()))?;
+                    let sp = StrengthTable::path_beside(&path);
+                    posture_opt::io::write_atomic(
+                        &sp,
+                        posture_opt::body::strength::DEFAULT_TABLE_YAML.as_bytes(),
+                    )
+                    .map_err(|e| bad(e.to_string()))?;
+                    eprintln!("wrote {} and {}", path.display(), sp.display());
+                    Ok(())
+                }
+                None => {
+                    print!("{urdf}");
+                    Ok(())
+                }
             }
         }
         Command::Met {

@@ -151,3 +151,133 @@ fn validate_dynamic_json() {
     assert_eq!(v["wexler"]["trend_reproduced"], true);
     assert_eq!(v["frey_law_avin"].as_array().unwrap().len(), 7);
 }
+
+#[test]
+fn statics_json_contract() {
+    let urdf = format!("{}/tests/data/two_link.urdf", env!("CARGO_MANIFEST_DIR"));
+    let (code, out, err) = run(&[
+        "statics",
+        "--robot",
+        &urdf,
+        "--frame",
+        "tip",
+        "--q",
+        "shoulder=0.3,elbow=0.5",
+        "--hand-load-kg",
+        "4",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["frame"], "tip");
+    let p = v["position_m"].as_array().unwrap();
+    assert!((p[0].as_f64().unwrap() - (0.3 * 0.3f64.cos() + 0.25 * 0.8f64.cos())).abs() < 1e-12);
+    let j = &v["joints"][1];
+    assert_eq!(j["name"], "elbow");
+    assert_eq!(j["q_rad"], 0.5);
+    let (g, l, t) = (
+        j["gravity_torque_nm"].as_f64().unwrap(),
+        j["load_torque_nm"].as_f64().unwrap(),
+        j["torque_nm"].as_f64().unwrap(),
+    );
+    assert!((g - 9.81 * 1.5 * 0.1 * 0.8f64.cos()).abs() < 1e-12);
+    assert!((l - 9.81 * 4.0 * 0.25 * 0.8f64.cos()).abs() < 1e-12);
+    assert!((t - g - l).abs() < 1e-12);
+    let jac = v["jacobian"]["elbow"].as_array().unwrap();
+    assert!((jac[0].as_f64().unwrap() + 0.25 * 0.8f64.sin()).abs() < 1e-12);
+    // the same with an explicit force, and a sideways gravity
+    let (code, out, _) = run(&[
+        "statics",
+        "--robot",
+        &urdf,
+        "--frame",
+        "tip",
+        "--hand-force",
+        "0,0,-39.24",
+        "--gravity",
+        "0,0,-9.81",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!((v["joints"][1]["load_torque_nm"].as_f64().unwrap() - 39.24 * 0.25).abs() < 1e-12);
+}
+
+#[test]
+fn statics_bad_input() {
+    let urdf = format!("{}/tests/data/two_link.urdf", env!("CARGO_MANIFEST_DIR"));
+    let (code, _, err) = run(&[
+        "statics",
+        "--robot",
+        &urdf,
+        "--frame",
+        "tip",
+        "--q",
+        "wrist=0.3",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("two_link.urdf") && err.contains("unknown joint 'wrist'"),
+        "{err}"
+    );
+    let (code, _, err) = run(&["statics", "--robot", &urdf, "--frame", "nose"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("unknown frame 'nose'"), "{err}");
+    let (code, _, err) = run(&["statics", "--robot", "/nonexistent.urdf", "--frame", "tip"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("/nonexistent.urdf"), "{err}");
+    let (code, _, err) = run(&[
+        "statics",
+        "--robot",
+        &urdf,
+        "--frame",
+        "tip",
+        "--hand-force",
+        "1,2",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--hand-force"), "{err}");
+}
+
+#[test]
+fn robot_writes_a_loadable_worker() {
+    let dir = std::env::temp_dir().join(format!("posture-opt-robot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("w.urdf");
+    let (code, _, err) = run(&[
+        "robot",
+        "--sex",
+        "female",
+        "--stature-m",
+        "1.62",
+        "--mass-kg",
+        "60",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.join("w.strength.yaml").exists());
+    let (code, out_json, err) = run(&[
+        "statics",
+        "--robot",
+        out.to_str().unwrap(),
+        "--frame",
+        "hand_grip",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out_json).unwrap();
+    assert_eq!(v["joints"].as_array().unwrap().len(), 10);
+    let (code, _, err) = run(&[
+        "robot",
+        "--sex",
+        "female",
+        "--stature-m",
+        "5",
+        "--mass-kg",
+        "60",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("stature_m"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

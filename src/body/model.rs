@@ -1,0 +1,561 @@
+//! The immutable body model: a kinematic tree loaded from URDF.
+//!
+//! Only what statics needs is kept: joint origins, axes, types and limits; link masses and
+//! centres of mass; collision capsules (from `<capsule>` or `<cylinder>` collision geometry). Links without `<inertial>` are massless; inertia tensors
+//! are ignored (they do not enter statics). Joints are stored in topological order (a joint's
+//! parent link is reached by joints that come before it), so one forward pass is forward
+//! kinematics and one backward pass accumulates subtree masses.
+
+use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
+use std::path::Path;
+
+/// Why a URDF could not become a body model. Every message names the element.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BodyError {
+    #[error("{path}: cannot read: {message}")]
+    Io { path: String, message: String },
+    #[error("{path}: not a valid URDF: {message}")]
+    Urdf { path: String, message: String },
+    #[error("{path}: {element}: {problem}")]
+    Invalid {
+        path: String,
+        element: String,
+        problem: String,
+    },
+    #[error("unknown frame '{0}': not a link or joint of the model")]
+    UnknownFrame(String),
+    #[error("unknown joint '{0}': not a moving joint of the model")]
+    UnknownJoint(String),
+}
+
+/// Joint kinds supported for statics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointKind {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+}
+
+/// A collision capsule in a link's frame: segment from `a` to `b`, radius `radius_m`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Capsule {
+    pub a: Point3<f64>,
+    pub b: Point3<f64>,
+    pub radius_m: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Link {
+    pub name: String,
+    pub mass_kg: f64,
+    /// Centre of mass in the link frame.
+    pub com_m: Point3<f64>,
+    /// The joint whose child this link is (None for the root).
+    pub parent_joint: Option<usize>,
+    pub capsules: Vec<Capsule>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    pub name: String,
+    pub kind: JointKind,
+    pub parent_link: usize,
+    pub child_link: usize,
+    /// Pose of the joint frame in the parent link frame (URDF `<origin>`).
+    pub parent_from_joint: Isometry3<f64>,
+    /// The same rotation as a matrix (precomputed for the hot loop), and whether it is identity.
+    pub parent_rot_joint: Matrix3<f64>,
+    pub origin_rotates: bool,
+    /// Unit axis in the joint frame.
+    pub axis: Vector3<f64>,
+    /// `Some((k, sign))` when the axis is `sign · e_k` (a coordinate axis): a faster rotation.
+    pub axis_coordinate: Option<(usize, f64)>,
+    /// Index into q for moving joints.
+    pub q_index: Option<usize>,
+    pub lower_rad: f64,
+    pub upper_rad: f64,
+    /// URDF `<limit effort>` [N·m or N]; 0 when absent.
+    pub effort: f64,
+}
+
+/// The immutable body model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyModel {
+    pub name: String,
+    pub links: Vec<Link>,
+    /// Topological order.
+    pub joints: Vec<Joint>,
+    /// For each q index, the joint index.
+    pub joint_of_q: Vec<usize>,
+    /// `ancestor[i * nj + j]`: joint i is joint j or an ancestor of it (on the path to the root).
+    ancestor: Vec<bool>,
+    /// For each link, whether joint i is on its path to the root: `link_anc[l * nj + i]`.
+    link_anc: Vec<bool>,
+    /// `q_ancestor[a * nq + b]`: the joint of q index a is that of q index b or an ancestor.
+    q_ancestor: Vec<bool>,
+    /// Rigid bodies: fixed joints folded into their parents (as Pinocchio does). Body 0 is the
+    /// root; body `k + 1` is moved by the joint of q index `k`.
+    pub bodies: Vec<RigidBody>,
+    /// For each link: its body and its pose in that body's frame.
+    pub link_in_body: Vec<LinkInBody>,
+    /// Per q index: the body the joint hangs from and the joint frame's pose in that body.
+    pub q_parent_body: Vec<usize>,
+    pub q_body_rot_joint: Vec<Matrix3<f64>>,
+    pub q_body_pos_joint: Vec<Vector3<f64>>,
+    /// Mass below each moving joint [kg] (posture-independent), per q index.
+    pub q_subtree_mass_kg: Vec<f64>,
+}
+
+/// A rigid body: links joined by fixed joints.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidBody {
+    pub mass_kg: f64,
+    /// Centre of mass in the body frame (zero when massless).
+    pub com_m: Vector3<f64>,
+}
+
+/// Where a link sits: its rigid body and its pose in the body frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkInBody {
+    pub body: usize,
+    pub rot: Matrix3<f64>,
+    pub pos: Vector3<f64>,
+}
+
+fn vec3(v: &[f64; 3]) -> Vector3<f64> {
+    Vector3::new(v[0], v[1], v[2])
+}
+
+fn pose(p: &urdf_rs::Pose) -> Isometry3<f64> {
+    let rot = UnitQuaternion::from_euler_angles(p.rpy[0], p.rpy[1], p.rpy[2]);
+    Isometry3::from_parts(Translation3::from(vec3(&p.xyz)), rot)
+}
+
+impl BodyModel {
+    /// Loads a URDF file.
+    pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, BodyError> {
+        let path = path.as_ref();
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| BodyError::Io {
+            path: p.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_urdf_str(&text, &p)
+    }
+
+    /// Loads URDF text; `origin` names the source in error messages.
+    pub fn from_urdf_str(text: &str, origin: &str) -> Result<Self, BodyError> {
+        let robot = urdf_rs::read_from_string(text).map_err(|e| BodyError::Urdf {
+            path: origin.into(),
+            message: e.to_string(),
+        })?;
+        Self::from_robot(&robot, origin)
+    }
+
+    /// Builds the model from a parsed URDF.
+    pub fn from_robot(robot: &urdf_rs::Robot, origin: &str) -> Result<Self, BodyError> {
+        let invalid = |element: String, problem: String| BodyError::Invalid {
+            path: origin.into(),
+            element,
+            problem,
+        };
+        let finite3 = |v: &[f64; 3]| v.iter().all(|x| x.is_finite());
+        if robot.links.is_empty() {
+            return Err(invalid("robot".into(), "has no <link>".into()));
+        }
+        let mut link_index = std::collections::HashMap::new();
+        let mut links = Vec::with_capacity(robot.links.len());
+        for l in &robot.links {
+            if link_index.insert(l.name.clone(), links.len()).is_some() {
+                return Err(invalid(
+                    format!("link '{}'", l.name),
+                    "is defined twice".into(),
+                ));
+            }
+            let m = l.inertial.mass.value;
+            if !m.is_finite() || m < 0.0 {
+                return Err(invalid(
+                    format!("link '{}' <inertial><mass>", l.name),
+                    format!("mass must be finite and >= 0 kg, got {m}"),
+                ));
+            }
+            let (xyz, rpy) = (&l.inertial.origin.xyz, &l.inertial.origin.rpy);
+            if !finite3(xyz) || !finite3(rpy) {
+                return Err(invalid(
+                    format!("link '{}' <inertial><origin>", l.name),
+                    "has a non-finite value".into(),
+                ));
+            }
+            let mut capsules = Vec::new();
+            for c in &l.collision {
+                // Capsules, and cylinders read as capsules (standard URDF has no capsule; a
+                // cylinder's capsule has the same axis segment and radius, so it is slightly
+                // longer: conservative for clearance).
+                if let urdf_rs::Geometry::Capsule { radius, length }
+                | urdf_rs::Geometry::Cylinder { radius, length } = c.geometry
+                {
+                    if !(radius.is_finite() && radius > 0.0 && length.is_finite() && length >= 0.0)
+                    {
+                        return Err(invalid(
+                            format!("link '{}' <collision> capsule/cylinder", l.name),
+                            format!("radius must be > 0 and length >= 0, got {radius}, {length}"),
+                        ));
+                    }
+                    // URDF capsules (like cylinders) lie along the z axis of their origin frame.
+                    let iso = pose(&c.origin);
+                    capsules.push(Capsule {
+                        a: iso * Point3::new(0.0, 0.0, -length / 2.0),
+                        b: iso * Point3::new(0.0, 0.0, length / 2.0),
+                        radius_m: radius,
+                    });
+                }
+            }
+            links.push(Link {
+                name: l.name.clone(),
+                mass_kg: m,
+                com_m: Point3::from(vec3(xyz)),
+                parent_joint: None,
+                capsules,
+            });
+        }
+
+        // Parent/child relations, checked.
+        let mut joint_names = std::collections::HashSet::new();
+        let mut child_of: Vec<Option<usize>> = vec![None; links.len()];
+        for (ji, j) in robot.joints.iter().enumerate() {
+            let el = || format!("joint '{}'", j.name);
+            if !joint_names.insert(j.name.clone()) {
+                return Err(invalid(el(), "is defined twice".into()));
+            }
+            let kind = match j.joint_type {
+                urdf_rs::JointType::Revolute => JointKind::Revolute,
+                urdf_rs::JointType::Continuous => JointKind::Continuous,
+                urdf_rs::JointType::Prismatic => JointKind::Prismatic,
+                urdf_rs::JointType::Fixed => JointKind::Fixed,
+                ref other => {
+                    return Err(invalid(
+                        el(),
+                        format!(
+                            "unsupported type '{}' (revolute, continuous, prismatic or fixed)",
+                            format!("{other:?}").to_lowercase()
+                        ),
+                    ))
+                }
+            };
+            let parent = *link_index.get(&j.parent.link).ok_or_else(|| {
+                invalid(
+                    el(),
+                    format!("parent link '{}' does not exist", j.parent.link),
+                )
+            })?;
+            let child = *link_index.get(&j.child.link).ok_or_else(|| {
+                invalid(
+                    el(),
+                    format!("child link '{}' does not exist", j.child.link),
+                )
+            })?;
+            if parent == child {
+                return Err(invalid(
+                    el(),
+                    "is its own parent (parent link = child link)".into(),
+                ));
+            }
+            if let Some(other) = child_of[child] {
+                return Err(invalid(
+                    el(),
+                    format!(
+                        "link '{}' already has parent joint '{}'",
+                        j.child.link, robot.joints[other].name
+                    ),
+                ));
+            }
+            child_of[child] = Some(ji);
+            if !finite3(&j.origin.xyz) || !finite3(&j.origin.rpy) {
+                return Err(invalid(
+                    format!("joint '{}' <origin>", j.name),
+                    "has a non-finite value".into(),
+                ));
+            }
+            if kind != JointKind::Fixed {
+                let a = vec3(&j.axis.xyz);
+                if !finite3(&j.axis.xyz) || a.norm() < 1e-12 {
+                    return Err(invalid(
+                        format!("joint '{}' <axis>", j.name),
+                        format!("axis must be finite and non-zero, got {:?}", j.axis.xyz.0),
+                    ));
+                }
+            }
+            let _ = kind;
+        }
+        let roots: Vec<usize> = (0..links.len())
+            .filter(|&l| child_of[l].is_none())
+            .collect();
+        if roots.is_empty() {
+            return Err(invalid(
+                "robot".into(),
+                "has no root link: the joints form a cycle".into(),
+            ));
+        }
+        if roots.len() > 1 {
+            let names: Vec<&str> = roots.iter().map(|&l| links[l].name.as_str()).collect();
+            return Err(invalid("robot".into(), format!("must have one root link, found {}: {} (a joint is missing, or the joints form a cycle)", names.len(), names.join(", "))));
+        }
+
+        // Topological order: depth-first preorder from the root, so that along a chain each
+        // joint's parent is the previous joint's child (kept in registers by forward kinematics).
+        let mut children: Vec<Vec<usize>> = vec![Vec::new(); links.len()];
+        for (ji, j) in robot.joints.iter().enumerate() {
+            children[link_index[&j.parent.link]].push(ji);
+        }
+        let mut order = Vec::with_capacity(robot.joints.len());
+        let mut stack: Vec<usize> = children[roots[0]].iter().rev().copied().collect();
+        while let Some(ji) = stack.pop() {
+            order.push(ji);
+            let child = link_index[&robot.joints[ji].child.link];
+            stack.extend(children[child].iter().rev().copied());
+        }
+        if order.len() != robot.joints.len() {
+            let reached: std::collections::HashSet<usize> = order.iter().copied().collect();
+            let stray = (0..robot.joints.len())
+                .find(|j| !reached.contains(j))
+                .unwrap_or(0);
+            return Err(invalid(
+                format!("joint '{}'", robot.joints[stray].name),
+                "is part of a cycle not connected to the root".into(),
+            ));
+        }
+
+        let mut joints = Vec::with_capacity(order.len());
+        let mut joint_of_q = Vec::new();
+        for &ji in &order {
+            let j = &robot.joints[ji];
+            let kind = match j.joint_type {
+                urdf_rs::JointType::Revolute => JointKind::Revolute,
+                urdf_rs::JointType::Continuous => JointKind::Continuous,
+                urdf_rs::JointType::Prismatic => JointKind::Prismatic,
+                _ => JointKind::Fixed,
+            };
+            let moving = kind != JointKind::Fixed;
+            let axis = if moving {
+                vec3(&j.axis.xyz).normalize()
+            } else {
+                Vector3::x()
+            };
+            let (lower, upper) = match kind {
+                JointKind::Revolute | JointKind::Prismatic => (j.limit.lower, j.limit.upper),
+                _ => (f64::NEG_INFINITY, f64::INFINITY),
+            };
+            if moving && (lower.is_nan() || upper.is_nan() || lower > upper) {
+                return Err(invalid(
+                    format!("joint '{}' <limit>", j.name),
+                    format!("lower {lower} must not exceed upper {upper}"),
+                ));
+            }
+            let q_index = moving.then(|| {
+                joint_of_q.push(joints.len());
+                joint_of_q.len() - 1
+            });
+            let child = link_index[&j.child.link];
+            links[child].parent_joint = Some(joints.len());
+            let parent_from_joint = pose(&j.origin);
+            let parent_rot_joint = *parent_from_joint.rotation.to_rotation_matrix().matrix();
+            joints.push(Joint {
+                name: j.name.clone(),
+                kind,
+                parent_link: link_index[&j.parent.link],
+                child_link: child,
+                origin_rotates: parent_rot_joint != Matrix3::identity(),
+                axis_coordinate: (0..3).find_map(|k| {
+                    let mut e = Vector3::zeros();
+                    e[k] = 1.0;
+                    if axis == e {
+                        Some((k, 1.0))
+                    } else if axis == -e {
+                        Some((k, -1.0))
+                    } else {
+                        None
+                    }
+                }),
+                parent_rot_joint,
+                parent_from_joint,
+                axis,
+                q_index,
+                lower_rad: lower,
+                upper_rad: upper,
+                effort: if j.limit.effort.is_finite() {
+                    j.limit.effort.max(0.0)
+                } else {
+                    0.0
+                },
+            });
+        }
+
+        let nj = joints.len();
+        let mut ancestor = vec![false; nj * nj];
+        for j in 0..nj {
+            // walk up from joint j
+            let mut cur = Some(j);
+            while let Some(i) = cur {
+                ancestor[i * nj + j] = true;
+                cur = links[joints[i].parent_link].parent_joint;
+            }
+        }
+        let mut link_anc = vec![false; links.len() * nj];
+        for (l, link) in links.iter().enumerate() {
+            let mut cur = link.parent_joint;
+            while let Some(i) = cur {
+                link_anc[l * nj + i] = true;
+                cur = links[joints[i].parent_link].parent_joint;
+            }
+        }
+        let nq = joint_of_q.len();
+        let mut q_ancestor = vec![false; nq * nq];
+        for a in 0..nq {
+            for b in 0..nq {
+                q_ancestor[a * nq + b] = ancestor[joint_of_q[a] * nj + joint_of_q[b]];
+            }
+        }
+        // Fold fixed joints: walk joints in topological order, placing each link in its body.
+        let root = roots[0];
+        let mut link_in_body = vec![
+            LinkInBody {
+                body: 0,
+                rot: Matrix3::identity(),
+                pos: Vector3::zeros()
+            };
+            links.len()
+        ];
+        let (mut q_parent_body, mut q_body_rot_joint, mut q_body_pos_joint) = (
+            vec![0; nq],
+            vec![Matrix3::identity(); nq],
+            vec![Vector3::zeros(); nq],
+        );
+        for j in &joints {
+            let parent = link_in_body[j.parent_link].clone();
+            let rot = parent.rot * j.parent_rot_joint;
+            let pos = parent.pos + parent.rot * j.parent_from_joint.translation.vector;
+            link_in_body[j.child_link] = match j.q_index {
+                None => LinkInBody {
+                    body: parent.body,
+                    rot,
+                    pos,
+                },
+                Some(k) => {
+                    q_parent_body[k] = parent.body;
+                    q_body_rot_joint[k] = rot;
+                    q_body_pos_joint[k] = pos;
+                    LinkInBody {
+                        body: k + 1,
+                        rot: Matrix3::identity(),
+                        pos: Vector3::zeros(),
+                    }
+                }
+            };
+        }
+        debug_assert_eq!(link_in_body[root].body, 0);
+        let mut bodies = vec![
+            RigidBody {
+                mass_kg: 0.0,
+                com_m: Vector3::zeros()
+            };
+            nq + 1
+        ];
+        let mut moment = vec![Vector3::zeros(); nq + 1];
+        for (l, link) in links.iter().enumerate() {
+            let lb = &link_in_body[l];
+            bodies[lb.body].mass_kg += link.mass_kg;
+            moment[lb.body] += link.mass_kg * (lb.rot * link.com_m.coords + lb.pos);
+        }
+        for (b, body) in bodies.iter_mut().enumerate() {
+            if body.mass_kg > 0.0 {
+                body.com_m = moment[b] / body.mass_kg;
+            }
+        }
+        let q_subtree_mass_kg = (0..nq)
+            .map(|k| {
+                (0..nq)
+                    .filter(|&b| q_ancestor[k * nq + b])
+                    .map(|b| bodies[b + 1].mass_kg)
+                    .sum()
+            })
+            .collect();
+        Ok(BodyModel {
+            name: robot.name.clone(),
+            links,
+            joints,
+            joint_of_q,
+            ancestor,
+            link_anc,
+            q_ancestor,
+            bodies,
+            link_in_body,
+            q_parent_body,
+            q_body_rot_joint,
+            q_body_pos_joint,
+            q_subtree_mass_kg,
+        })
+    }
+
+    /// Number of moving joints (the length of q).
+    pub fn nq(&self) -> usize {
+        self.joint_of_q.len()
+    }
+
+    /// The moving joint at q index `i`.
+    pub fn q_joint(&self, i: usize) -> &Joint {
+        &self.joints[self.joint_of_q[i]]
+    }
+
+    /// q index of a moving joint by name.
+    pub fn q_index(&self, name: &str) -> Result<usize, BodyError> {
+        self.joints
+            .iter()
+            .find(|j| j.name == name)
+            .and_then(|j| j.q_index)
+            .ok_or_else(|| BodyError::UnknownJoint(name.to_string()))
+    }
+
+    /// The link that carries a frame given by link name or joint name (a joint's frame is its
+    /// child link's frame).
+    pub fn frame_link(&self, name: &str) -> Result<usize, BodyError> {
+        if let Some(l) = self.links.iter().position(|l| l.name == name) {
+            return Ok(l);
+        }
+        self.joints
+            .iter()
+            .find(|j| j.name == name)
+            .map(|j| j.child_link)
+            .ok_or_else(|| BodyError::UnknownFrame(name.to_string()))
+    }
+
+    /// Whether joint `i` is joint `j` or one of its ancestors.
+    #[inline]
+    pub fn is_ancestor_or_self(&self, i: usize, j: usize) -> bool {
+        self.ancestor[i * self.joints.len() + j]
+    }
+
+    /// Whether the joint of q index `a` is that of q index `b` or one of its ancestors.
+    #[inline]
+    pub fn q_is_ancestor_or_self(&self, a: usize, b: usize) -> bool {
+        self.q_ancestor[a * self.joint_of_q.len() + b]
+    }
+
+    /// Whether the joint of q index `k` moves rigid body `b`.
+    #[inline]
+    pub fn q_moves_body(&self, k: usize, b: usize) -> bool {
+        b > 0 && self.q_is_ancestor_or_self(k, b - 1)
+    }
+
+    /// Whether joint `i` moves link `l` (lies on its path to the root).
+    #[inline]
+    pub fn moves_link(&self, i: usize, l: usize) -> bool {
+        self.link_anc[l * self.joints.len() + i]
+    }
+
+    /// Total mass [kg].
+    pub fn total_mass_kg(&self) -> f64 {
+        self.links.iter().map(|l| l.mass_kg).sum()
+    }
+}
