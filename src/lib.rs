@@ -18,6 +18,11 @@ pub mod body;
 pub mod error;
 pub mod fatigue;
 pub mod io;
+pub mod optim;
+pub mod plan;
+pub mod report;
+pub mod task;
 pub mod validation;
+pub mod workstation;
 
 pub use error::Error;

@@ -71,6 +71,19 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Plan postures for a task file: fatigue-adaptive (default) or the baseline.
+    Plan {
+        /// Task file (YAML).
+        task: PathBuf,
+        /// The fatigue-unaware baseline: fresh capacities, solved once, held all task.
+        #[arg(long)]
+        no_adapt: bool,
+        #[arg(long)]
+        json: bool,
+        /// Also write the timeline as CSV.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
     /// Write the URDF of a standing worker (and its strength table beside it).
     Robot {
         #[arg(long, value_enum)]
@@ -313,6 +326,19 @@ fn run(cli: Cli) -> Result<()> {
                         j.name, j.q_rad, j.gravity_torque_nm, j.load_torque_nm, j.torque_nm
                     );
                 }
+                Ok(())
+            }
+        }
+        Command::Plan { task, no_adapt, json, csv } => {
+            let t = posture_opt::task::Task::from_file(&task).map_err(|e| bad(e.to_string()))?;
+            let (plan, _baseline) = posture_opt::plan::plan_with_baseline(&t, !no_adapt)?;
+            if let Some(path) = csv {
+                posture_opt::io::write_atomic(&path, posture_opt::report::plan_csv(&plan).as_bytes()).map_err(|e| bad(e.to_string()))?;
+            }
+            if json {
+                print_json(&plan)
+            } else {
+                print!("{}", posture_opt::report::plan_summary(&plan));
                 Ok(())
             }
         }

@@ -1,0 +1,144 @@
+//! The workstation: obstacles (boxes, cylinders, planes) and their clearance to the body's
+//! collision capsules. The only user of parry3d; poses cross from nalgebra to glam here.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::query::contact;
+use parry3d_f64::shape::{Capsule as PCapsule, Cuboid, Cylinder, HalfSpace, Shape};
+use serde::{Deserialize, Serialize};
+
+/// An obstacle as written in a task file (metres, radians, world frame).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    pub name: String,
+    #[serde(flatten)]
+    pub shape: ShapeSpec,
+    /// Centre (box, cylinder) or a point on the plane.
+    #[serde(default)]
+    pub position_m: [f64; 3],
+    /// Roll, pitch, yaw (URDF convention).
+    #[serde(default)]
+    pub rpy_rad: [f64; 3],
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShapeSpec {
+    /// Full edge lengths along the obstacle's x, y, z.
+    Box { size_m: [f64; 3] },
+    /// Axis along the obstacle's z.
+    Cylinder { radius_m: f64, height_m: f64 },
+    /// The solid half-space behind the plane: points p with (p − position)·normal ≤ 0.
+    Plane { normal: [f64; 3] },
+}
+
+/// Why an obstacle was refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("obstacle '{name}': {problem}")]
+pub struct ObstacleError {
+    pub name: String,
+    pub problem: String,
+}
+
+/// A checked obstacle.
+pub struct Obstacle {
+    pub spec: ObstacleSpec,
+    pose: Pose,
+    shape: Box<dyn Shape>,
+}
+
+impl std::fmt::Debug for Obstacle {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Obstacle").field("spec", &self.spec).finish()
+    }
+}
+
+/// Clearance between a capsule and an obstacle: signed distance (negative = penetration), the
+/// unit normal pointing from the capsule toward the obstacle, and the witness point on the
+/// capsule surface, world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clearance {
+    pub obstacle: usize,
+    pub distance_m: f64,
+    pub normal: Vector3<f64>,
+    pub point_m: Vector3<f64>,
+}
+
+fn v(x: &Vector3<f64>) -> Vector {
+    Vector::new(x.x, x.y, x.z)
+}
+
+fn nv(x: Vector) -> Vector3<f64> {
+    Vector3::new(x.x, x.y, x.z)
+}
+
+impl Obstacle {
+    /// Checks sizes and builds the parry shape.
+    pub fn new(spec: ObstacleSpec) -> Result<Self, ObstacleError> {
+        let bad = |problem: String| ObstacleError { name: spec.name.clone(), problem };
+        let finite = |a: &[f64]| a.iter().all(|x| x.is_finite());
+        if !finite(&spec.position_m) || !finite(&spec.rpy_rad) {
+            return Err(bad("position_m and rpy_rad must be finite".into()));
+        }
+        let q = UnitQuaternion::from_euler_angles(spec.rpy_rad[0], spec.rpy_rad[1], spec.rpy_rad[2]);
+        let mut rot = parry3d_f64::glamx::DQuat::from_xyzw(q.i, q.j, q.k, q.w);
+        let shape: Box<dyn Shape> = match &spec.shape {
+            ShapeSpec::Box { size_m } => {
+                if !size_m.iter().all(|s| s.is_finite() && *s > 0.0) {
+                    return Err(bad(format!("box size_m must be finite and > 0, got {size_m:?}")));
+                }
+                Box::new(Cuboid::new(Vector::new(size_m[0] / 2.0, size_m[1] / 2.0, size_m[2] / 2.0)))
+            }
+            ShapeSpec::Cylinder { radius_m, height_m } => {
+                if !(radius_m.is_finite() && *radius_m > 0.0 && height_m.is_finite() && *height_m > 0.0) {
+                    return Err(bad(format!("cylinder radius_m and height_m must be finite and > 0, got {radius_m}, {height_m}")));
+                }
+                // parry's cylinder runs along its y axis; ours along z: turn +90° about x.
+                rot = rot * parry3d_f64::glamx::DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
+                Box::new(Cylinder::new(height_m / 2.0, *radius_m))
+            }
+            ShapeSpec::Plane { normal } => {
+                let n = Vector3::from(*normal);
+                if !finite(normal) || n.norm() < 1e-9 {
+                    return Err(bad(format!("plane normal must be finite and non-zero, got {normal:?}")));
+                }
+                let n = q * n.normalize();
+                rot = parry3d_f64::glamx::DQuat::IDENTITY;
+                Box::new(HalfSpace::new(v(&n)))
+            }
+        };
+        let p = spec.position_m;
+        let pose = Pose::from_parts(Vector::new(p[0], p[1], p[2]), rot);
+        Ok(Obstacle { spec, pose, shape })
+    }
+
+    /// Signed clearance of the capsule `a`–`b` (world, radius `radius_m`) from this obstacle, if
+    /// below `within_m`.
+    pub fn clearance(&self, index: usize, a: &Vector3<f64>, b: &Vector3<f64>, radius_m: f64, within_m: f64) -> Option<Clearance> {
+        let cap = PCapsule::new(v(a), v(b), radius_m);
+        let c = contact(&Pose::identity(), &cap, &self.pose, self.shape.as_ref(), within_m).ok().flatten()?;
+        Some(Clearance { obstacle: index, distance_m: c.dist, normal: nv(c.normal1), point_m: nv(c.point1) })
+    }
+}
+
+/// All obstacles of a task.
+#[derive(Debug, Default)]
+pub struct Workstation {
+    pub obstacles: Vec<Obstacle>,
+}
+
+impl Workstation {
+    pub fn new(specs: Vec<ObstacleSpec>) -> Result<Self, ObstacleError> {
+        Ok(Workstation { obstacles: specs.into_iter().map(Obstacle::new).collect::<Result<_, _>>()? })
+    }
+
+    /// Clearances of one capsule from every obstacle closer than `within_m`, appended to `out`.
+    pub fn clearances(&self, a: &Vector3<f64>, b: &Vector3<f64>, radius_m: f64, within_m: f64, out: &mut Vec<Clearance>) {
+        for (i, o) in self.obstacles.iter().enumerate() {
+            if let Some(c) = o.clearance(i, a, b, radius_m, within_m) {
+                out.push(c);
+            }
+        }
+    }
+}
