@@ -329,11 +329,20 @@ fn run(cli: Cli) -> Result<()> {
                 Ok(())
             }
         }
-        Command::Plan { task, no_adapt, json, csv } => {
+        Command::Plan {
+            task,
+            no_adapt,
+            json,
+            csv,
+        } => {
             let t = posture_opt::task::Task::from_file(&task).map_err(|e| bad(e.to_string()))?;
             let (plan, _baseline) = posture_opt::plan::plan_with_baseline(&t, !no_adapt)?;
             if let Some(path) = csv {
-                posture_opt::io::write_atomic(&path, posture_opt::report::plan_csv(&plan).as_bytes()).map_err(|e| bad(e.to_string()))?;
+                posture_opt::io::write_atomic(
+                    &path,
+                    posture_opt::report::plan_csv(&plan).as_bytes(),
+                )
+                .map_err(|e| bad(e.to_string()))?;
             }
             if json {
                 print_json(&plan)

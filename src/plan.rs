@@ -10,7 +10,9 @@
 
 use crate::body::{holding_torques, StaticsData};
 use crate::fatigue::{MaParams, MaState};
-use crate::optim::{solve_phase, FatigueObjective, PhaseInput, PhaseSolution, QpError, SqpSettings, SqpWork};
+use crate::optim::{
+    solve_phase, FatigueObjective, PhaseInput, PhaseSolution, QpError, SqpSettings, SqpWork,
+};
 use crate::task::Task;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -99,6 +101,12 @@ pub struct Summary {
     pub baseline_total_u: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub change_vs_baseline: Option<f64>,
+    /// The baseline's simulated duration and exhaustion (a plan that exhausts ends early, so
+    /// its total U is over a shorter time: compare exhaustion times first).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baseline_duration_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baseline_exhaustion_t_s: Option<f64>,
 }
 
 /// A plan: the DESIGN §6 `plan` document.
@@ -136,7 +144,13 @@ struct Ctx {
 impl<'t> Planner<'t> {
     pub fn new(task: &'t Task) -> Self {
         let settings = SqpSettings::default();
-        Planner { task, settings, data: StaticsData::new(&task.model), work: SqpWork::new(&task.model, &settings), warm_start: None }
+        Planner {
+            task,
+            settings,
+            data: StaticsData::new(&task.model),
+            work: SqpWork::new(&task.model, &settings),
+            warm_start: None,
+        }
     }
 
     /// Interior-point iterations of all QP solves so far.
@@ -146,7 +160,14 @@ impl<'t> Planner<'t> {
 
     fn loads_at(&mut self, q: &[f64], force: &Vector3<f64>, out: &mut [f64]) {
         let t = self.task;
-        holding_torques(&t.model, &mut self.data, q, t.hand_link, force, &t.gravity_m_s2);
+        holding_torques(
+            &t.model,
+            &mut self.data,
+            q,
+            t.hand_link,
+            force,
+            &t.gravity_m_s2,
+        );
         for (i, h) in t.half_joints.iter().enumerate() {
             out[i] = h.load(self.data.tau_nm[h.q_index], q[h.q_index]);
         }
@@ -158,7 +179,13 @@ impl<'t> Planner<'t> {
         let mut q = vec![0.0; m.nq()];
         for (i, v) in q.iter_mut().enumerate() {
             let j = m.q_joint(i);
-            let guess: f64 = if j.name.contains("elbow") { 1.0 } else if j.name.contains("shoulder_flexion") { 0.6 } else { 0.0 };
+            let guess: f64 = if j.name.contains("elbow") {
+                1.0
+            } else if j.name.contains("shoulder_flexion") {
+                0.6
+            } else {
+                0.0
+            };
             *v = guess.clamp(j.lower_rad, j.upper_rad);
         }
         q
@@ -170,7 +197,11 @@ impl<'t> Planner<'t> {
         let nh = t.half_joints.len();
         let fresh_state = vec![MaState::FRESH; nh];
         let st = if fresh { &fresh_state } else { &ctx.state };
-        let w: Vec<f64> = t.phases.iter().map(|p| p.duration_s * horizon_cycles / 60.0).collect();
+        let w: Vec<f64> = t
+            .phases
+            .iter()
+            .map(|p| p.duration_s * horizon_cycles / 60.0)
+            .collect();
         let w_rest = t.rest_s * horizon_cycles / 60.0;
         let q_neutral = vec![0.0; t.model.nq()];
         let mut obj = FatigueObjective {
@@ -184,14 +215,28 @@ impl<'t> Planner<'t> {
         // Phases with the same target and hand force have the same optimal posture: solve one
         // representative per group, with the group's combined hold time.
         let rep: Vec<usize> = (0..t.phases.len())
-            .map(|p| (0..=p).find(|&o| t.phases[o].target_m == t.phases[p].target_m && t.phases[o].hand_force_n == t.phases[p].hand_force_n).unwrap_or(p))
+            .map(|p| {
+                (0..=p)
+                    .find(|&o| {
+                        t.phases[o].target_m == t.phases[p].target_m
+                            && t.phases[o].hand_force_n == t.phases[p].hand_force_n
+                    })
+                    .unwrap_or(p)
+            })
             .collect();
         let sweeps = if ctx.replans == 0 { 2 } else { 1 };
         for _sweep in 0..sweeps {
             for p in (0..t.phases.len()).filter(|&p| rep[p] == p) {
-                let group_w: f64 = (0..t.phases.len()).filter(|&o| rep[o] == p).map(|o| w[o]).sum();
+                let group_w: f64 = (0..t.phases.len())
+                    .filter(|&o| rep[o] == p)
+                    .map(|o| w[o])
+                    .sum();
                 for h in 0..nh {
-                    obj.base_min[h] = ctx.f_rest[h] * w_rest + (0..t.phases.len()).filter(|&o| rep[o] != p).map(|o| ctx.f_phase[o][h] * w[o]).sum::<f64>();
+                    obj.base_min[h] = ctx.f_rest[h] * w_rest
+                        + (0..t.phases.len())
+                            .filter(|&o| rep[o] != p)
+                            .map(|o| ctx.f_phase[o][h] * w[o])
+                            .sum::<f64>();
                 }
                 obj.weight_min = group_w;
                 let ph = &t.phases[p];
@@ -206,8 +251,17 @@ impl<'t> Planner<'t> {
                     workstation: &t.workstation,
                     settings: self.settings,
                 };
-                let sol = solve_phase(&t.model, &mut self.data, &mut self.work, &input, &mut ctx.q_phase[p])
-                    .map_err(|source| PlanError::Qp { phase: ph.name.clone(), source })?;
+                let sol = solve_phase(
+                    &t.model,
+                    &mut self.data,
+                    &mut self.work,
+                    &input,
+                    &mut ctx.q_phase[p],
+                )
+                .map_err(|source| PlanError::Qp {
+                    phase: ph.name.clone(),
+                    source,
+                })?;
                 ctx.sqp_iterations += sol.iterations as u64;
                 let q = ctx.q_phase[p].clone();
                 let mut f = std::mem::take(&mut ctx.f_phase[p]);
@@ -227,11 +281,19 @@ impl<'t> Planner<'t> {
     }
 
     fn names_map(&self, v: impl Iterator<Item = f64>) -> BTreeMap<String, f64> {
-        (0..self.task.model.nq()).map(|i| self.task.model.q_joint(i).name.clone()).zip(v).collect()
+        (0..self.task.model.nq())
+            .map(|i| self.task.model.q_joint(i).name.clone())
+            .zip(v)
+            .collect()
     }
 
     fn hj_map(&self, v: impl Iterator<Item = f64>) -> BTreeMap<String, f64> {
-        self.task.half_joints.iter().map(|h| h.id.clone()).zip(v).collect()
+        self.task
+            .half_joints
+            .iter()
+            .map(|h| h.id.clone())
+            .zip(v)
+            .collect()
     }
 
     /// Plans the task: adaptive (`adapt = true`) or the fatigue-unaware baseline.
@@ -278,7 +340,11 @@ impl<'t> Planner<'t> {
                     Some(s) => time - last_plan_t >= s,
                     None => cycle - last_plan_cycle >= t.replan_every_cycles,
                 };
-                let moved = ctx.state.iter().zip(&last_plan_capacity).any(|(s, c)| (s.capacity - c).abs() > t.capacity_tolerance);
+                let moved = ctx
+                    .state
+                    .iter()
+                    .zip(&last_plan_capacity)
+                    .any(|(s, c)| (s.capacity - c).abs() > t.capacity_tolerance);
                 if interval_passed && moved {
                     self.replan(&mut ctx, false, (t.cycles - cycle) as f64)?;
                     last_plan_capacity = ctx.state.iter().map(|s| s.capacity).collect();
@@ -290,15 +356,28 @@ impl<'t> Planner<'t> {
             for si in 0..n_steps {
                 let (name, q, force, target, mut dur) = if si < n_ph {
                     let ph = &t.phases[si];
-                    (ph.name.clone(), ctx.q_phase[si].clone(), ph.hand_force_n, Some(ph.target_m), ph.duration_s)
+                    (
+                        ph.name.clone(),
+                        ctx.q_phase[si].clone(),
+                        ph.hand_force_n,
+                        Some(ph.target_m),
+                        ph.duration_s,
+                    )
                 } else {
-                    ("rest".to_string(), q_rest.clone(), Vector3::zeros(), None, t.rest_s)
+                    (
+                        "rest".to_string(),
+                        q_rest.clone(),
+                        Vector3::zeros(),
+                        None,
+                        t.rest_s,
+                    )
                 };
                 self.loads_at(&q, &force, &mut f);
                 // Can every group hold its load for the whole step?
                 let mut ex: Option<(f64, usize)> = None;
                 for h in 0..nh {
-                    if let Some(te) = t.fatigue[h].time_to_exhaustion_s(ctx.state[h].capacity, f[h]) {
+                    if let Some(te) = t.fatigue[h].time_to_exhaustion_s(ctx.state[h].capacity, f[h])
+                    {
                         if te < dur && ex.is_none_or(|(t0, _)| te < t0) {
                             ex = Some((te, h));
                         }
@@ -329,7 +408,11 @@ impl<'t> Planner<'t> {
                     phase: name,
                     cycle,
                     q_rad: self.names_map(q.iter().copied()),
-                    hand_position_m: [self.data.hand_pos_m.x, self.data.hand_pos_m.y, self.data.hand_pos_m.z],
+                    hand_position_m: [
+                        self.data.hand_pos_m.x,
+                        self.data.hand_pos_m.y,
+                        self.data.hand_pos_m.z,
+                    ],
                     target_position_m: target.map(|v| [v.x, v.y, v.z]),
                     hand_force_n: [force.x, force.y, force.z],
                     torque_nm: self.names_map(self.data.tau_nm.iter().copied()),
@@ -346,11 +429,26 @@ impl<'t> Planner<'t> {
             cycles_done = cycle + 1;
         }
 
-        let (worst_h, worst_u) = ctx.state.iter().enumerate().map(|(h, s)| (h, s.fatigue_u_min)).fold((0, f64::MIN), |a, b| if b.1 > a.1 { b } else { a });
-        let (minc_h, minc) = ctx.state.iter().enumerate().map(|(h, s)| (h, s.capacity)).fold((0, f64::MAX), |a, b| if b.1 < a.1 { b } else { a });
+        let (worst_h, worst_u) = ctx
+            .state
+            .iter()
+            .enumerate()
+            .map(|(h, s)| (h, s.fatigue_u_min))
+            .fold((0, f64::MIN), |a, b| if b.1 > a.1 { b } else { a });
+        let (minc_h, minc) = ctx
+            .state
+            .iter()
+            .enumerate()
+            .map(|(h, s)| (h, s.capacity))
+            .fold((0, f64::MAX), |a, b| if b.1 < a.1 { b } else { a });
         let phases = (0..n_ph)
             .map(|p| {
-                let mut loaded: Vec<(String, f64)> = t.half_joints.iter().zip(&ctx.f_phase[p]).map(|(h, f)| (h.id.clone(), *f)).collect();
+                let mut loaded: Vec<(String, f64)> = t
+                    .half_joints
+                    .iter()
+                    .zip(&ctx.f_phase[p])
+                    .map(|(h, f)| (h.id.clone(), *f))
+                    .collect();
                 loaded.sort_by(|a, b| b.1.total_cmp(&a.1));
                 loaded.truncate(3);
                 let sol = ctx.sols[p];
@@ -359,7 +457,11 @@ impl<'t> Planner<'t> {
                     q_rad: self.names_map(ctx.q_phase[p].iter().copied()),
                     hand_error_m: sol.hand_error_m,
                     reachable: sol.hand_error_m <= 0.01,
-                    min_clearance_m: if sol.min_clearance_m.is_finite() { sol.min_clearance_m } else { self.settings.clearance_horizon_m },
+                    min_clearance_m: if sol.min_clearance_m.is_finite() {
+                        sol.min_clearance_m
+                    } else {
+                        self.settings.clearance_horizon_m
+                    },
                     most_loaded: loaded,
                 }
             })
@@ -372,7 +474,11 @@ impl<'t> Planner<'t> {
             task: t.name.clone(),
             robot: t.robot.clone(),
             hand_frame: t.hand_frame.clone(),
-            fatigue_model: if any_recovery { "ma2009+recovery".into() } else { "ma2009".into() },
+            fatigue_model: if any_recovery {
+                "ma2009+recovery".into()
+            } else {
+                "ma2009".into()
+            },
             half_joints: t
                 .half_joints
                 .iter()
@@ -407,6 +513,8 @@ impl<'t> Planner<'t> {
                 phases,
                 baseline_total_u: None,
                 change_vs_baseline: None,
+                baseline_duration_s: None,
+                baseline_exhaustion_t_s: None,
             },
         })
     }
@@ -416,8 +524,18 @@ impl<'t> Planner<'t> {
 pub fn plan_with_baseline(task: &Task, adapt: bool) -> Result<(Plan, Plan), PlanError> {
     let mut planner = Planner::new(task);
     let baseline = planner.plan(false)?;
-    let mut main = if adapt { planner.plan(true)? } else { baseline.clone() };
+    let mut main = if adapt {
+        planner.plan(true)?
+    } else {
+        baseline.clone()
+    };
     main.summary.baseline_total_u = Some(baseline.summary.total_u);
-    main.summary.change_vs_baseline = Some(if baseline.summary.total_u > 0.0 { main.summary.total_u / baseline.summary.total_u - 1.0 } else { 0.0 });
+    main.summary.baseline_duration_s = Some(baseline.summary.duration_s);
+    main.summary.baseline_exhaustion_t_s = baseline.summary.exhaustion.as_ref().map(|e| e.t_s);
+    main.summary.change_vs_baseline = Some(if baseline.summary.total_u > 0.0 {
+        main.summary.total_u / baseline.summary.total_u - 1.0
+    } else {
+        0.0
+    });
     Ok((main, baseline))
 }

@@ -8,7 +8,19 @@ use std::fmt::Write;
 pub fn plan_summary(p: &Plan) -> String {
     let s = &p.summary;
     let mut o = String::new();
-    let _ = writeln!(o, "{} — {} plan, {} ({}), hand frame {}", p.task, if s.adaptive { "fatigue-adaptive" } else { "baseline (no adaptation)" }, p.fatigue_model, p.robot, p.hand_frame);
+    let _ = writeln!(
+        o,
+        "{} — {} plan, {} ({}), hand frame {}",
+        p.task,
+        if s.adaptive {
+            "fatigue-adaptive"
+        } else {
+            "baseline (no adaptation)"
+        },
+        p.fatigue_model,
+        p.robot,
+        p.hand_frame
+    );
     let _ = writeln!(o, "planned {:.0} s, simulated {:.0} s ({} cycles), {} re-plans, {} QP solves, {} SQP iterations\n", s.planned_duration_s, s.duration_s, s.cycles_done, s.replans, s.qp_solves, s.sqp_iterations);
     for ph in &s.phases {
         let _ = writeln!(
@@ -16,31 +28,74 @@ pub fn plan_summary(p: &Plan) -> String {
             "phase '{}': hand error {:.1} mm{}, clearance {:.0} mm",
             ph.phase,
             ph.hand_error_m * 1000.0,
-            if ph.reachable { "" } else { " — TARGET OUT OF REACH: nearest reachable posture" },
+            if ph.reachable {
+                ""
+            } else {
+                " — TARGET OUT OF REACH: nearest reachable posture"
+            },
             ph.min_clearance_m * 1000.0
         );
-        let q: Vec<String> = ph.q_rad.iter().filter(|(_, v)| v.abs() > 0.005).map(|(k, v)| format!("{k} {:.0}°", v.to_degrees())).collect();
-        let _ = writeln!(o, "  posture: {}", if q.is_empty() { "neutral".into() } else { q.join(", ") });
-        let l: Vec<String> = ph.most_loaded.iter().map(|(h, f)| format!("{h} {:.0}%", 100.0 * f)).collect();
+        let q: Vec<String> = ph
+            .q_rad
+            .iter()
+            .filter(|(_, v)| v.abs() > 0.005)
+            .map(|(k, v)| format!("{k} {:.0}°", v.to_degrees()))
+            .collect();
+        let _ = writeln!(
+            o,
+            "  posture: {}",
+            if q.is_empty() {
+                "neutral".into()
+            } else {
+                q.join(", ")
+            }
+        );
+        let l: Vec<String> = ph
+            .most_loaded
+            .iter()
+            .map(|(h, f)| format!("{h} {:.0}%", 100.0 * f))
+            .collect();
         let _ = writeln!(o, "  most loaded: {}", l.join(", "));
     }
     if let Some(last) = p.steps.last() {
         let mut caps: Vec<(&String, &f64)> = last.capacity.iter().collect();
         caps.sort_by(|a, b| a.1.total_cmp(b.1));
-        let c: Vec<String> = caps.iter().take(5).map(|(h, c)| format!("{h} {:.2}", c)).collect();
+        let c: Vec<String> = caps
+            .iter()
+            .take(5)
+            .map(|(h, c)| format!("{h} {:.2}", c))
+            .collect();
         let _ = writeln!(o, "\nlowest capacities at the end: {}", c.join(", "));
     }
     match &s.exhaustion {
         Some(e) => {
-            let _ = writeln!(o, "EXHAUSTION at {:.0} s: {} ({}) can no longer hold {:.0}% MVC in phase '{}'", e.t_s, e.half_joint, e.group, 100.0 * e.load, e.phase);
+            let _ = writeln!(
+                o,
+                "EXHAUSTION at {:.0} s: {} ({}) can no longer hold {:.0}% MVC in phase '{}'",
+                e.t_s,
+                e.half_joint,
+                e.group,
+                100.0 * e.load,
+                e.phase
+            );
         }
         None => {
             let _ = writeln!(o, "no muscle group exhausted");
         }
     }
-    let _ = write!(o, "total fatigue index U = {:.2} min (worst: {} {:.2} min)", s.total_u, s.worst_half_joint, s.worst_u);
+    let _ = write!(
+        o,
+        "total fatigue index U = {:.2} min (worst: {} {:.2} min)",
+        s.total_u, s.worst_half_joint, s.worst_u
+    );
     if let (Some(b), Some(c)) = (s.baseline_total_u, s.change_vs_baseline) {
         let _ = write!(o, "; baseline {:.2} min ({:+.1}%)", b, 100.0 * c);
+        if let Some(te) = s.baseline_exhaustion_t_s {
+            let _ = write!(
+                o,
+                "\nthe baseline exhausts at {te:.0} s: totals cover different durations"
+            );
+        }
     }
     let _ = writeln!(o);
     o
@@ -49,10 +104,15 @@ pub fn plan_summary(p: &Plan) -> String {
 /// The timeline as CSV: one row per step; q, torque, capacity and U columns per joint/half-joint.
 pub fn plan_csv(p: &Plan) -> String {
     let mut o = String::new();
-    let Some(first) = p.steps.first() else { return o };
+    let Some(first) = p.steps.first() else {
+        return o;
+    };
     let joints: Vec<&String> = first.q_rad.keys().collect();
     let hjs: Vec<&String> = first.capacity.keys().collect();
-    let _ = write!(o, "t_s,duration_s,cycle,phase,hand_x_m,hand_y_m,hand_z_m,force_x_n,force_y_n,force_z_n");
+    let _ = write!(
+        o,
+        "t_s,duration_s,cycle,phase,hand_x_m,hand_y_m,hand_z_m,force_x_n,force_y_n,force_z_n"
+    );
     for j in &joints {
         let _ = write!(o, ",q_{j}_rad");
     }
@@ -67,7 +127,16 @@ pub fn plan_csv(p: &Plan) -> String {
         let _ = write!(
             o,
             "{},{},{},\"{}\",{},{},{},{},{},{}",
-            s.t_s, s.duration_s, s.cycle, s.phase.replace('"', "\"\""), s.hand_position_m[0], s.hand_position_m[1], s.hand_position_m[2], s.hand_force_n[0], s.hand_force_n[1], s.hand_force_n[2]
+            s.t_s,
+            s.duration_s,
+            s.cycle,
+            s.phase.replace('"', "\"\""),
+            s.hand_position_m[0],
+            s.hand_position_m[1],
+            s.hand_position_m[2],
+            s.hand_force_n[0],
+            s.hand_force_n[1],
+            s.hand_force_n[2]
         );
         for j in &joints {
             let _ = write!(o, ",{}", s.q_rad[*j]);

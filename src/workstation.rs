@@ -46,11 +46,17 @@ pub struct Obstacle {
     pub spec: ObstacleSpec,
     pose: Pose,
     shape: Box<dyn Shape>,
+    /// For planes: (point on the plane, unit normal toward free space). Capsule–plane clearance
+    /// is computed in closed form (parry 0.31's capsule–half-space contact misplaces a half-space
+    /// whose pose is not at the origin; `tests/workstation.rs` pins the expected values).
+    plane: Option<(Vector3<f64>, Vector3<f64>)>,
 }
 
 impl std::fmt::Debug for Obstacle {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Obstacle").field("spec", &self.spec).finish()
+        f.debug_struct("Obstacle")
+            .field("spec", &self.spec)
+            .finish()
     }
 }
 
@@ -76,22 +82,37 @@ fn nv(x: Vector) -> Vector3<f64> {
 impl Obstacle {
     /// Checks sizes and builds the parry shape.
     pub fn new(spec: ObstacleSpec) -> Result<Self, ObstacleError> {
-        let bad = |problem: String| ObstacleError { name: spec.name.clone(), problem };
+        let bad = |problem: String| ObstacleError {
+            name: spec.name.clone(),
+            problem,
+        };
         let finite = |a: &[f64]| a.iter().all(|x| x.is_finite());
         if !finite(&spec.position_m) || !finite(&spec.rpy_rad) {
             return Err(bad("position_m and rpy_rad must be finite".into()));
         }
-        let q = UnitQuaternion::from_euler_angles(spec.rpy_rad[0], spec.rpy_rad[1], spec.rpy_rad[2]);
+        let q =
+            UnitQuaternion::from_euler_angles(spec.rpy_rad[0], spec.rpy_rad[1], spec.rpy_rad[2]);
         let mut rot = parry3d_f64::glamx::DQuat::from_xyzw(q.i, q.j, q.k, q.w);
+        let mut plane = None;
         let shape: Box<dyn Shape> = match &spec.shape {
             ShapeSpec::Box { size_m } => {
                 if !size_m.iter().all(|s| s.is_finite() && *s > 0.0) {
-                    return Err(bad(format!("box size_m must be finite and > 0, got {size_m:?}")));
+                    return Err(bad(format!(
+                        "box size_m must be finite and > 0, got {size_m:?}"
+                    )));
                 }
-                Box::new(Cuboid::new(Vector::new(size_m[0] / 2.0, size_m[1] / 2.0, size_m[2] / 2.0)))
+                Box::new(Cuboid::new(Vector::new(
+                    size_m[0] / 2.0,
+                    size_m[1] / 2.0,
+                    size_m[2] / 2.0,
+                )))
             }
             ShapeSpec::Cylinder { radius_m, height_m } => {
-                if !(radius_m.is_finite() && *radius_m > 0.0 && height_m.is_finite() && *height_m > 0.0) {
+                if !(radius_m.is_finite()
+                    && *radius_m > 0.0
+                    && height_m.is_finite()
+                    && *height_m > 0.0)
+                {
                     return Err(bad(format!("cylinder radius_m and height_m must be finite and > 0, got {radius_m}, {height_m}")));
                 }
                 // parry's cylinder runs along its y axis; ours along z: turn +90° about x.
@@ -101,24 +122,63 @@ impl Obstacle {
             ShapeSpec::Plane { normal } => {
                 let n = Vector3::from(*normal);
                 if !finite(normal) || n.norm() < 1e-9 {
-                    return Err(bad(format!("plane normal must be finite and non-zero, got {normal:?}")));
+                    return Err(bad(format!(
+                        "plane normal must be finite and non-zero, got {normal:?}"
+                    )));
                 }
                 let n = q * n.normalize();
                 rot = parry3d_f64::glamx::DQuat::IDENTITY;
+                plane = Some((Vector3::from(spec.position_m), n));
                 Box::new(HalfSpace::new(v(&n)))
             }
         };
         let p = spec.position_m;
         let pose = Pose::from_parts(Vector::new(p[0], p[1], p[2]), rot);
-        Ok(Obstacle { spec, pose, shape })
+        Ok(Obstacle {
+            spec,
+            pose,
+            shape,
+            plane,
+        })
     }
 
     /// Signed clearance of the capsule `a`–`b` (world, radius `radius_m`) from this obstacle, if
     /// below `within_m`.
-    pub fn clearance(&self, index: usize, a: &Vector3<f64>, b: &Vector3<f64>, radius_m: f64, within_m: f64) -> Option<Clearance> {
+    pub fn clearance(
+        &self,
+        index: usize,
+        a: &Vector3<f64>,
+        b: &Vector3<f64>,
+        radius_m: f64,
+        within_m: f64,
+    ) -> Option<Clearance> {
+        if let Some((p0, n)) = &self.plane {
+            let (da, db) = (n.dot(&(a - p0)), n.dot(&(b - p0)));
+            let (d, end) = if da <= db { (da, a) } else { (db, b) };
+            let distance_m = d - radius_m;
+            return (distance_m <= within_m).then(|| Clearance {
+                obstacle: index,
+                distance_m,
+                normal: -n,
+                point_m: end - n * radius_m,
+            });
+        }
         let cap = PCapsule::new(v(a), v(b), radius_m);
-        let c = contact(&Pose::identity(), &cap, &self.pose, self.shape.as_ref(), within_m).ok().flatten()?;
-        Some(Clearance { obstacle: index, distance_m: c.dist, normal: nv(c.normal1), point_m: nv(c.point1) })
+        let c = contact(
+            &Pose::identity(),
+            &cap,
+            &self.pose,
+            self.shape.as_ref(),
+            within_m,
+        )
+        .ok()
+        .flatten()?;
+        Some(Clearance {
+            obstacle: index,
+            distance_m: c.dist,
+            normal: nv(c.normal1),
+            point_m: nv(c.point1),
+        })
     }
 }
 
@@ -130,11 +190,23 @@ pub struct Workstation {
 
 impl Workstation {
     pub fn new(specs: Vec<ObstacleSpec>) -> Result<Self, ObstacleError> {
-        Ok(Workstation { obstacles: specs.into_iter().map(Obstacle::new).collect::<Result<_, _>>()? })
+        Ok(Workstation {
+            obstacles: specs
+                .into_iter()
+                .map(Obstacle::new)
+                .collect::<Result<_, _>>()?,
+        })
     }
 
     /// Clearances of one capsule from every obstacle closer than `within_m`, appended to `out`.
-    pub fn clearances(&self, a: &Vector3<f64>, b: &Vector3<f64>, radius_m: f64, within_m: f64, out: &mut Vec<Clearance>) {
+    pub fn clearances(
+        &self,
+        a: &Vector3<f64>,
+        b: &Vector3<f64>,
+        radius_m: f64,
+        within_m: f64,
+        out: &mut Vec<Clearance>,
+    ) {
         for (i, o) in self.obstacles.iter().enumerate() {
             if let Some(c) = o.clearance(i, a, b, radius_m, within_m) {
                 out.push(c);

@@ -281,3 +281,65 @@ fn robot_writes_a_loadable_worker() {
     assert!(err.contains("stature_m"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn plan_json_contract_and_csv() {
+    let task = format!("{}/tasks/bench_assembly.yaml", env!("CARGO_MANIFEST_DIR"));
+    let csv = std::env::temp_dir().join(format!("posture-opt-plan-{}.csv", std::process::id()));
+    let (code, out, err) = run(&["plan", &task, "--json", "--csv", csv.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in [
+        "task",
+        "robot",
+        "hand_frame",
+        "fatigue_model",
+        "half_joints",
+        "steps",
+        "summary",
+    ] {
+        assert!(!v[key].is_null(), "{key}");
+    }
+    let hj = &v["half_joints"][0];
+    for key in [
+        "id",
+        "joint",
+        "direction",
+        "group",
+        "mvc_nm",
+        "k_per_min",
+        "recovery_per_min",
+    ] {
+        assert!(!hj[key].is_null(), "half_joints[0].{key}");
+    }
+    let steps = v["steps"].as_array().unwrap();
+    let s = &steps[0];
+    for key in [
+        "t_s",
+        "duration_s",
+        "phase",
+        "cycle",
+        "q_rad",
+        "hand_position_m",
+        "hand_force_n",
+        "torque_nm",
+        "capacity",
+        "fatigue_u",
+    ] {
+        assert!(!s[key].is_null(), "steps[0].{key}");
+    }
+    assert!(s.get("target_position_m").is_some());
+    let rest = steps.iter().find(|s| s["phase"] == "rest").unwrap();
+    assert!(rest["target_position_m"].is_null());
+    assert_eq!(s["t_s"], 0.0);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(text.lines().count(), steps.len() + 1);
+    assert!(text.starts_with("t_s,duration_s,cycle,phase"));
+    std::fs::remove_file(&csv).ok();
+    let (code, out, _) = run(&["plan", &task, "--no-adapt"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("baseline (no adaptation)"), "{out}");
+    let (code, _, err) = run(&["plan", "/nonexistent.yaml"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("/nonexistent.yaml"));
+}

@@ -62,7 +62,10 @@ impl FatigueObjective {
     /// U increment over the horizon for load-time `df` [min] with recovery (closed form).
     fn du_recovery(&self, h: usize, df: f64) -> f64 {
         let t_min = self.horizon_min.max(1e-9);
-        let mut st = MaState { capacity: self.capacity[h], fatigue_u_min: 0.0 };
+        let mut st = MaState {
+            capacity: self.capacity[h],
+            fatigue_u_min: 0.0,
+        };
         self.params[h].hold(&mut st, (df / t_min).max(0.0), min_to_s(t_min));
         st.fatigue_u_min
     }
@@ -93,10 +96,18 @@ impl FatigueObjective {
             } else {
                 let df = self.base_min[h] + f[h] * w;
                 let step = 1e-4 * df.abs().max(1e-3);
-                let (um, u0, up) = (self.du_recovery(h, (df - step).max(0.0)), self.du_recovery(h, df), self.du_recovery(h, df + step));
+                let (um, u0, up) = (
+                    self.du_recovery(h, (df - step).max(0.0)),
+                    self.du_recovery(h, df),
+                    self.du_recovery(h, df + step),
+                );
                 let lo = df - (df - step).max(0.0);
                 let d1 = (up - um) / (step + lo);
-                let d2 = if lo > 0.0 { (up - 2.0 * u0 + um) / (step * step) } else { 0.0 };
+                let d2 = if lo > 0.0 {
+                    (up - 2.0 * u0 + um) / (step * step)
+                } else {
+                    0.0
+                };
                 let inv_s = (-log_s).exp();
                 grad[h] = d1 * w * inv_s;
                 hess[h] = d2.max(0.0) * w * w * inv_s;

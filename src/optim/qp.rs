@@ -8,7 +8,10 @@
 //! `s±/MVC± − v ≤ c±`, and `K` collision rows `−nᵀ J_c Δq ≤ d − d_min`.
 
 use clarabel::algebra::CscMatrix;
-use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, SupportedConeT, ZeroConeT};
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+    SupportedConeT, ZeroConeT,
+};
 
 /// Why a QP could not be set up or solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -86,7 +89,13 @@ impl PhaseQp {
 
     pub fn cols(&self) -> Cols {
         let n = self.n;
-        Cols { dq: 0, s_plus: n, s_minus: 2 * n, e: 3 * n, v: 3 * n + 3 }
+        Cols {
+            dq: 0,
+            s_plus: n,
+            s_minus: 2 * n,
+            e: 3 * n,
+            v: 3 * n + 3,
+        }
     }
 
     /// A QP for `n` joints with room for `k_collision` collision rows.
@@ -176,7 +185,13 @@ impl PhaseQp {
     }
 
     fn csc_p(&self) -> CscMatrix<f64> {
-        CscMatrix::new(self.n_var, self.n_var, (0..=self.n_var).collect(), (0..self.n_var).collect(), self.p_nz.clone())
+        CscMatrix::new(
+            self.n_var,
+            self.n_var,
+            (0..=self.n_var).collect(),
+            (0..self.n_var).collect(),
+            self.p_nz.clone(),
+        )
     }
 
     /// Solves with the staged data; returns whether clarabel reports a (nearly) solved problem.
@@ -187,10 +202,14 @@ impl PhaseQp {
         self.p_nz.copy_from_slice(&self.p_diag);
         match &mut self.solver {
             Some(s) => {
-                s.update_P(&self.p_nz).map_err(|e| QpError::Update(e.to_string()))?;
-                s.update_A(&self.a_nz).map_err(|e| QpError::Update(e.to_string()))?;
-                s.update_q(&self.q).map_err(|e| QpError::Update(e.to_string()))?;
-                s.update_b(&self.b).map_err(|e| QpError::Update(e.to_string()))?;
+                s.update_P(&self.p_nz)
+                    .map_err(|e| QpError::Update(e.to_string()))?;
+                s.update_A(&self.a_nz)
+                    .map_err(|e| QpError::Update(e.to_string()))?;
+                s.update_q(&self.q)
+                    .map_err(|e| QpError::Update(e.to_string()))?;
+                s.update_b(&self.b)
+                    .map_err(|e| QpError::Update(e.to_string()))?;
             }
             None => {
                 let settings = DefaultSettingsBuilder::default()
@@ -203,16 +222,27 @@ impl PhaseQp {
                     .build()
                     .map_err(|e| QpError::Setup(e.to_string()))?;
                 let n_eq = self.n + 3;
-                let cones: [SupportedConeT<f64>; 2] = [ZeroConeT(n_eq), NonnegativeConeT(self.n_row - n_eq)];
-                let s = DefaultSolver::new(&self.csc_p(), &self.q, &self.csc_a(), &self.b, &cones, settings)
-                    .map_err(|e| QpError::Setup(e.to_string()))?;
+                let cones: [SupportedConeT<f64>; 2] =
+                    [ZeroConeT(n_eq), NonnegativeConeT(self.n_row - n_eq)];
+                let s = DefaultSolver::new(
+                    &self.csc_p(),
+                    &self.q,
+                    &self.csc_a(),
+                    &self.b,
+                    &cones,
+                    settings,
+                )
+                .map_err(|e| QpError::Setup(e.to_string()))?;
                 self.solver = Some(s);
             }
         }
         let s = self.solver.as_mut().expect("solver built above");
         s.solve();
         self.solves += 1;
-        let ok = matches!(s.solution.status, SolverStatus::Solved | SolverStatus::AlmostSolved);
+        let ok = matches!(
+            s.solution.status,
+            SolverStatus::Solved | SolverStatus::AlmostSolved
+        );
         if ok {
             self.x.copy_from_slice(&s.solution.x);
         }

@@ -98,7 +98,11 @@ impl SqpWork {
             .iter()
             .enumerate()
             .filter(|(l, _)| model.link_in_body[*l].body != 0)
-            .flat_map(|(l, link)| link.capsules.iter().map(move |c| (l, c.a.coords, c.b.coords, c.radius_m)))
+            .flat_map(|(l, link)| {
+                link.capsules
+                    .iter()
+                    .map(move |c| (l, c.a.coords, c.b.coords, c.radius_m))
+            })
             .collect();
         let nh = 2 * model.nq();
         SqpWork {
@@ -148,21 +152,71 @@ fn clearances(
 }
 
 /// Merit of posture `q`: the objective plus target, comfort and clearance penalties.
-fn merit(model: &BodyModel, data: &mut StaticsData, work: &mut SqpWork, input: &PhaseInput, q: &[f64]) -> (f64, f64, f64, f64) {
-    holding_torques(model, data, q, input.hand_link, &input.force_on_hand_n, &input.gravity_m_s2);
+fn merit(
+    model: &BodyModel,
+    data: &mut StaticsData,
+    work: &mut SqpWork,
+    input: &PhaseInput,
+    q: &[f64],
+) -> (f64, f64, f64, f64) {
+    holding_torques(
+        model,
+        data,
+        q,
+        input.hand_link,
+        &input.force_on_hand_n,
+        &input.gravity_m_s2,
+    );
     loads(input.half_joints, data, q, &mut work.f);
-    let j = input.objective.eval(&work.f, &mut work.grad, &mut work.hess);
+    let j = input
+        .objective
+        .eval(&work.f, &mut work.grad, &mut work.hess);
     let err = (data.hand_pos_m - input.target_m).norm();
     let s = &input.settings;
-    let comfort: f64 = q.iter().zip(input.q_neutral_rad).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() * s.comfort_weight;
-    let min_d = clearances(model, data, &work.capsules, input.workstation, s.clearance_horizon_m, &mut work.clear_scratch, &mut work.clear);
-    let pen: f64 = work.clear.iter().map(|(_, c)| (s.clearance_m - c.distance_m).max(0.0).powi(2)).sum::<f64>() * s.target_weight;
-    let cap: f64 = work.f.iter().zip(input.objective.capacity.iter()).map(|(f, c)| (f - c).max(0.0)).map(|v| s.capacity_weight * (v * v + v)).sum();
-    (j + s.target_weight * err * err + comfort + pen + cap, err, min_d, j)
+    let comfort: f64 = q
+        .iter()
+        .zip(input.q_neutral_rad)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        * s.comfort_weight;
+    let min_d = clearances(
+        model,
+        data,
+        &work.capsules,
+        input.workstation,
+        s.clearance_horizon_m,
+        &mut work.clear_scratch,
+        &mut work.clear,
+    );
+    let pen: f64 = work
+        .clear
+        .iter()
+        .map(|(_, c)| (s.clearance_m - c.distance_m).max(0.0).powi(2))
+        .sum::<f64>()
+        * s.target_weight;
+    let cap: f64 = work
+        .f
+        .iter()
+        .zip(input.objective.capacity.iter())
+        .map(|(f, c)| (f - c).max(0.0))
+        .map(|v| s.capacity_weight * (v * v + v))
+        .sum();
+    (
+        j + s.target_weight * err * err + comfort + pen + cap,
+        err,
+        min_d,
+        j,
+    )
 }
 
 /// Optimises the posture `q` (in/out, radians) of one phase.
-pub fn solve_phase(model: &BodyModel, data: &mut StaticsData, work: &mut SqpWork, input: &PhaseInput, q: &mut [f64]) -> Result<PhaseSolution, QpError> {
+pub fn solve_phase(
+    model: &BodyModel,
+    data: &mut StaticsData,
+    work: &mut SqpWork,
+    input: &PhaseInput,
+    q: &mut [f64],
+) -> Result<PhaseSolution, QpError> {
     let n = model.nq();
     let s = input.settings;
     for (i, qi) in q.iter_mut().enumerate() {
@@ -175,12 +229,30 @@ pub fn solve_phase(model: &BodyModel, data: &mut StaticsData, work: &mut SqpWork
     while sol.iterations < s.max_iterations {
         sol.iterations += 1;
         // Linearise at q.
-        holding_torques(model, data, q, input.hand_link, &input.force_on_hand_n, &input.gravity_m_s2);
+        holding_torques(
+            model,
+            data,
+            q,
+            input.hand_link,
+            &input.force_on_hand_n,
+            &input.gravity_m_s2,
+        );
         holding_torque_derivative(model, data);
         loads(input.half_joints, data, q, &mut work.f);
-        input.objective.eval(&work.f, &mut work.grad, &mut work.hess);
-        clearances(model, data, &work.capsules, input.workstation, s.clearance_horizon_m, &mut work.clear_scratch, &mut work.clear);
-        work.clear.sort_by(|a, b| a.1.distance_m.total_cmp(&b.1.distance_m));
+        input
+            .objective
+            .eval(&work.f, &mut work.grad, &mut work.hess);
+        clearances(
+            model,
+            data,
+            &work.capsules,
+            input.workstation,
+            s.clearance_horizon_m,
+            &mut work.clear_scratch,
+            &mut work.clear,
+        );
+        work.clear
+            .sort_by(|a, b| a.1.distance_m.total_cmp(&b.1.distance_m));
         work.clear.truncate(s.max_collision_rows);
 
         let qp = &mut work.qp;
@@ -195,8 +267,14 @@ pub fn solve_phase(model: &BodyModel, data: &mut StaticsData, work: &mut SqpWork
             let mvc = hj.mvc_at(q[hj.q_index]);
             let tau = data.tau_nm[hj.q_index];
             let (col, s_bar, cap_row) = match hj.direction {
-                crate::body::Direction::Positive => (c.s_plus + hj.q_index, tau.max(0.0), r.cap_plus + hj.q_index),
-                crate::body::Direction::Negative => (c.s_minus + hj.q_index, (-tau).max(0.0), r.cap_minus + hj.q_index),
+                crate::body::Direction::Positive => {
+                    (c.s_plus + hj.q_index, tau.max(0.0), r.cap_plus + hj.q_index)
+                }
+                crate::body::Direction::Negative => (
+                    c.s_minus + hj.q_index,
+                    (-tau).max(0.0),
+                    r.cap_minus + hj.q_index,
+                ),
             };
             let gs = work.grad[h] / mvc;
             let hs = work.hess[h] / (mvc * mvc);
@@ -243,7 +321,11 @@ pub fn solve_phase(model: &BodyModel, data: &mut StaticsData, work: &mut SqpWork
             for k in 0..n {
                 if model.q_moves_body(k, body) {
                     let jc = data.axis_w[k].cross(&(cl.point_m - data.origin_w[k]));
-                    let jc = if model.q_joint(k).kind == crate::body::JointKind::Prismatic { data.axis_w[k] } else { jc };
+                    let jc = if model.q_joint(k).kind == crate::body::JointKind::Prismatic {
+                        data.axis_w[k]
+                    } else {
+                        jc
+                    };
                     qp.set_a(r.collision + row, c.dq + k, -cl.normal.dot(&jc));
                 }
             }
