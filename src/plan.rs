@@ -1,3 +1,5 @@
+// Index loops over parallel per-joint / per-half-joint arrays read clearer than zipped iterators.
+#![allow(clippy::needless_range_loop)]
 //! The planning loop: optimise → hold → update fatigue exactly → re-plan as capacity falls.
 //!
 //! Each cycle holds every phase's posture for its duration (one [`Step`] per phase) and then

@@ -116,7 +116,7 @@ impl Obstacle {
                     return Err(bad(format!("cylinder radius_m and height_m must be finite and > 0, got {radius_m}, {height_m}")));
                 }
                 // parry's cylinder runs along its y axis; ours along z: turn +90° about x.
-                rot = rot * parry3d_f64::glamx::DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
+                rot *= parry3d_f64::glamx::DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
                 Box::new(Cylinder::new(height_m / 2.0, *radius_m))
             }
             ShapeSpec::Plane { normal } => {

@@ -130,10 +130,10 @@ fn check_truth(t: &Task, p: &Plan) {
                 );
             }
         }
-        for j in 0..m.nq() {
+        for (j, qj) in q.iter().enumerate() {
             let jt = m.q_joint(j);
             assert!(
-                q[j] >= jt.lower_rad - 1e-9 && q[j] <= jt.upper_rad + 1e-9,
+                *qj >= jt.lower_rad - 1e-9 && *qj <= jt.upper_rad + 1e-9,
                 "{} outside its limits",
                 jt.name
             );

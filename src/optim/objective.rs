@@ -1,3 +1,5 @@
+// Index loops over parallel per-joint / per-half-joint arrays read clearer than zipped iterators.
+#![allow(clippy::needless_range_loop)]
 //! The fatigue objective of the posture QP, and why it has this form.
 //!
 //! Per half-joint h (parameters k_h, R_h; capacity c_h and index U_h now), the phases of a cycle

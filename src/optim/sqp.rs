@@ -1,3 +1,5 @@
+// Index loops over parallel per-joint / per-half-joint arrays read clearer than zipped iterators.
+#![allow(clippy::needless_range_loop)]
 //! Sequential QP for one phase's posture: linearise statics at the current posture, solve the
 //! phase QP, accept the step if the merit function does not increase (else halve the trust
 //! region), repeat to convergence. The QP's clarabel solver and all buffers live in [`SqpWork`]
