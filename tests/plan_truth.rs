@@ -187,3 +187,19 @@ fn every_shipped_task_runs_and_is_true() {
         }
     }
 }
+
+#[test]
+fn adaptation_avoids_the_baselines_exhaustion_on_shelf_heavy() {
+    let t = task("shelf_heavy.yaml");
+    let (adaptive, baseline) = plan_with_baseline(&t, true).unwrap();
+    let e = baseline
+        .summary
+        .exhaustion
+        .as_ref()
+        .expect("the baseline exhausts with 6 kg boxes");
+    assert_eq!(e.half_joint, "r_shoulder_flexion+");
+    assert!(e.t_s < 600.0);
+    assert!(adaptive.summary.exhaustion.is_none());
+    assert!((adaptive.summary.duration_s - 3600.0).abs() < 1e-6);
+    check_truth(&t, &adaptive);
+}
