@@ -41,6 +41,7 @@
 
 pub mod body;
 pub mod error;
+pub mod evaluate;
 pub mod fatigue;
 pub mod io;
 pub mod optim;

@@ -83,6 +83,42 @@ enum Command {
         /// Also write the timeline as CSV.
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// Also write the plan as a recording for `evaluate` (t_s, joints, force_*_n).
+        #[arg(long)]
+        recording: Option<PathBuf>,
+    },
+    /// Evaluate recorded work (joint angles and hand load over time) into a fatigue timeline.
+    Evaluate {
+        /// Recording (CSV: t_s, joint columns, load_kg or force_x_n/_y_n/_z_n); not with --stream.
+        #[arg(required_unless_present = "stream")]
+        recording: Option<PathBuf>,
+        #[arg(long)]
+        robot: PathBuf,
+        #[arg(long, default_value = "hand_grip")]
+        hand_frame: String,
+        /// Joint columns are in degrees.
+        #[arg(long)]
+        degrees: bool,
+        #[arg(long, value_enum, default_value = "male")]
+        sex: Sex,
+        #[arg(long, default_value_t = 1.755)]
+        stature_m: f64,
+        #[arg(long, default_value_t = 78.0)]
+        mass_kg: f64,
+        #[arg(long, default_value_t = 50.0)]
+        strength_percentile: f64,
+        #[arg(long, default_value_t = 1.0)]
+        k_per_min: f64,
+        #[arg(long, default_value_t = 0.0)]
+        r_per_min: f64,
+        /// Live: read the header and then one sample per line from standard input, write one
+        /// JSON line per sample.
+        #[arg(long, conflicts_with_all = ["json", "csv"])]
+        stream: bool,
+        #[arg(long)]
+        json: bool,
+        #[arg(long)]
+        csv: Option<PathBuf>,
     },
     /// Write the URDF of a standing worker (and its strength table beside it).
     Robot {
@@ -329,11 +365,66 @@ fn run(cli: Cli) -> Result<()> {
                 Ok(())
             }
         }
+        Command::Evaluate {
+            recording,
+            robot,
+            hand_frame,
+            degrees,
+            sex,
+            stature_m,
+            mass_kg,
+            strength_percentile,
+            k_per_min,
+            r_per_min,
+            stream,
+            json,
+            csv,
+        } => {
+            let worker = Worker {
+                sex,
+                stature_m,
+                mass_kg,
+                strength_percentile,
+            };
+            let params = MaParams::new(k_per_min, r_per_min).map_err(lib_err)?;
+            let setup =
+                posture_opt::evaluate::EvalSetup::from_robot(&robot, &hand_frame, &worker, params)
+                    .map_err(|e| bad(e.to_string()))?;
+            if stream {
+                return posture_opt::evaluate::stream(
+                    &setup,
+                    degrees,
+                    std::io::stdin().lock(),
+                    std::io::stdout().lock(),
+                )
+                .map_err(|e| match e {
+                    posture_opt::evaluate::StreamError::Recording(r) => bad(r.to_string()),
+                    posture_opt::evaluate::StreamError::Io(io) => anyhow!(io),
+                });
+            }
+            let path = recording.expect("clap requires a recording without --stream");
+            let name = path.display().to_string();
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| bad(format!("{name}: cannot read: {e}")))?;
+            let report = posture_opt::evaluate::evaluate_recording(&setup, &text, degrees, &name)
+                .map_err(|e| bad(e.to_string()))?;
+            if let Some(p) = csv {
+                posture_opt::io::write_atomic(&p, report.to_csv().as_bytes())
+                    .map_err(|e| bad(e.to_string()))?;
+            }
+            if json {
+                print_json(&report)
+            } else {
+                print!("{}", report.summary_text());
+                Ok(())
+            }
+        }
         Command::Plan {
             task,
             no_adapt,
             json,
             csv,
+            recording,
         } => {
             let t = posture_opt::task::Task::from_file(&task).map_err(|e| bad(e.to_string()))?;
             let (plan, _baseline) = posture_opt::plan::plan_with_baseline(&t, !no_adapt)?;
@@ -341,6 +432,13 @@ fn run(cli: Cli) -> Result<()> {
                 posture_opt::io::write_atomic(
                     &path,
                     posture_opt::report::plan_csv(&plan).as_bytes(),
+                )
+                .map_err(|e| bad(e.to_string()))?;
+            }
+            if let Some(path) = recording {
+                posture_opt::io::write_atomic(
+                    &path,
+                    posture_opt::report::plan_recording_csv(&plan).as_bytes(),
                 )
                 .map_err(|e| bad(e.to_string()))?;
             }

@@ -151,3 +151,36 @@ pub fn plan_csv(p: &Plan) -> String {
     }
     o
 }
+
+/// The plan as a recording for `posture-opt evaluate`: one sample at the start of every step
+/// (its posture and hand force) and a closing sample at the end of the last step, so that under
+/// the zero-order hold each step's load acts for exactly its duration.
+pub fn plan_recording_csv(p: &Plan) -> String {
+    let mut o = String::new();
+    let Some(first) = p.steps.first() else {
+        return o;
+    };
+    let joints: Vec<&String> = first.q_rad.keys().collect();
+    o.push_str("t_s");
+    for j in &joints {
+        let _ = write!(o, ",{j}");
+    }
+    o.push_str(",force_x_n,force_y_n,force_z_n\n");
+    let row = |o: &mut String, t: f64, s: &crate::plan::Step| {
+        let _ = write!(o, "{t}");
+        for j in &joints {
+            let _ = write!(o, ",{}", s.q_rad[*j]);
+        }
+        let _ = writeln!(
+            o,
+            ",{},{},{}",
+            s.hand_force_n[0], s.hand_force_n[1], s.hand_force_n[2]
+        );
+    };
+    for s in &p.steps {
+        row(&mut o, s.t_s, s);
+    }
+    let last = p.steps.last().expect("non-empty");
+    row(&mut o, last.t_s + last.duration_s, last);
+    o
+}
