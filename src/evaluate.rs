@@ -116,6 +116,22 @@ impl Columns {
     }
 }
 
+/// The error for a sample whose time does not increase.
+fn time_not_increasing(
+    source_name: &str,
+    line: usize,
+    t_s: f64,
+    previous_t_s: f64,
+) -> RecordingError {
+    RecordingError::Cell {
+        source_name: source_name.into(),
+        line,
+        column: 1,
+        name: "t_s".into(),
+        problem: format!("time {t_s} does not increase (previous sample at {previous_t_s})"),
+    }
+}
+
 /// One parsed sample.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sample {
@@ -459,16 +475,8 @@ pub fn evaluate_recording(
             source_name,
             &mut sample,
         )?;
-        ev.push(&sample).map_err(|t0| RecordingError::Cell {
-            source_name: source_name.into(),
-            line: i + 1,
-            column: 1,
-            name: "t_s".into(),
-            problem: format!(
-                "time {} does not increase (previous sample at {t0})",
-                sample.t_s
-            ),
-        })?;
+        ev.push(&sample)
+            .map_err(|t0| time_not_increasing(source_name, i + 1, sample.t_s, t0))?;
         t.push(sample.t_s);
         cap.push(ev.state.iter().map(|s| s.capacity).collect::<Vec<_>>());
         u.push(ev.state.iter().map(|s| s.fatigue_u_min).collect::<Vec<_>>());
@@ -622,16 +630,9 @@ pub fn stream(
                 None => cols = Some(Columns::parse(&line, &setup.model, degrees, "stdin")?),
                 Some(c) => {
                     parse_sample(&line, line_no, c, &setup.gravity_m_s2, "stdin", &mut sample)?;
-                    let new = ev.push(&sample).map_err(|t0| RecordingError::Cell {
-                        source_name: "stdin".into(),
-                        line: line_no,
-                        column: 1,
-                        name: "t_s".into(),
-                        problem: format!(
-                            "time {} does not increase (previous sample at {t0})",
-                            sample.t_s
-                        ),
-                    })?;
+                    let new = ev
+                        .push(&sample)
+                        .map_err(|t0| time_not_increasing("stdin", line_no, sample.t_s, t0))?;
                     ev.write_json_line(sample.t_s, new, &mut line_buf);
                     line_buf.push('\n');
                     std::io::Write::write_all(&mut out, line_buf.as_bytes())?;
