@@ -40,6 +40,7 @@
 //! * [`plan`]: the planning loop and the `Plan` document; [`report`]: its summary and CSV.
 
 pub mod body;
+pub mod compare;
 pub mod error;
 pub mod evaluate;
 pub mod fatigue;
@@ -47,6 +48,9 @@ pub mod io;
 pub mod optim;
 pub mod plan;
 pub mod report;
+pub mod rest;
+pub mod rula;
+pub mod sweep;
 pub mod task;
 pub mod validation;
 pub mod workstation;

@@ -8,6 +8,7 @@ use posture_opt::body::{
     statics_report, worker_urdf, BodyModel, Sex, StrengthTable, Worker, GRAVITY_M_S2,
 };
 use posture_opt::fatigue::{FatigueError, MaParams};
+use posture_opt::report::html;
 use posture_opt::validation::{dynamic_validation, plots, static_validation};
 use std::io::Write;
 use std::path::PathBuf;
@@ -86,6 +87,47 @@ enum Command {
         /// Also write the plan as a recording for `evaluate` (t_s, joints, force_*_n).
         #[arg(long)]
         recording: Option<PathBuf>,
+        /// Also write a self-contained HTML report (curves, postures, RULA, rest).
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
+        #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
+        capacity_floor: f64,
+    },
+    /// Compare workstation layouts (task files): side by side, ranked.
+    Compare {
+        /// Two or more task files (YAML), one per layout.
+        #[arg(required = true, num_args = 2..)]
+        tasks: Vec<PathBuf>,
+        /// Plan every layout with the fatigue-unaware baseline instead.
+        #[arg(long)]
+        no_adapt: bool,
+        #[arg(long)]
+        json: bool,
+        /// Also write a self-contained HTML report.
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
+        #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
+        capacity_floor: f64,
+    },
+    /// Plan one task for a population of workers: who cannot do it, and where.
+    Sweep {
+        /// Task file (YAML); the worker and robot in it are replaced by each population member.
+        task: PathBuf,
+        /// Sample this many workers instead of the 5th/50th/95th-percentile men and women.
+        #[arg(long)]
+        sample: Option<usize>,
+        /// Seed of the sample.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[arg(long)]
+        no_adapt: bool,
+        #[arg(long)]
+        json: bool,
+        /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
+        #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
+        capacity_floor: f64,
     },
     /// Evaluate recorded work (joint angles and hand load over time) into a fatigue timeline.
     Evaluate {
@@ -267,6 +309,22 @@ fn parse_q(s: &str) -> Result<Vec<(String, f64)>> {
         .collect()
 }
 
+fn check_floor(f: f64) -> Result<()> {
+    if f.is_finite() && f > 0.0 && f < 1.0 {
+        Ok(())
+    } else {
+        Err(bad(format!("--capacity-floor must be between 0 and 1, got {f}")))
+    }
+}
+
+/// Writes every output atomically, only after all of them were produced.
+fn write_outputs(outputs: &[(PathBuf, String)]) -> Result<()> {
+    for (path, text) in outputs {
+        posture_opt::io::write_atomic(path, text.as_bytes()).map_err(|e| bad(e.to_string()))?;
+    }
+    Ok(())
+}
+
 fn print_json(v: &impl serde::Serialize) -> Result<()> {
     let mut out = std::io::stdout().lock();
     serde_json::to_writer_pretty(&mut out, v)?;
@@ -425,27 +483,136 @@ fn run(cli: Cli) -> Result<()> {
             json,
             csv,
             recording,
+            report,
+            capacity_floor,
         } => {
+            check_floor(capacity_floor)?;
             let t = posture_opt::task::Task::from_file(&task).map_err(|e| bad(e.to_string()))?;
             let (plan, _baseline) = posture_opt::plan::plan_with_baseline(&t, !no_adapt)?;
+            let rest = posture_opt::rest::rest_advice(&t, &plan, capacity_floor);
+            // Everything is computed before anything is written.
+            let mut outputs: Vec<(PathBuf, String)> = Vec::new();
             if let Some(path) = csv {
-                posture_opt::io::write_atomic(
-                    &path,
-                    posture_opt::report::plan_csv(&plan).as_bytes(),
-                )
-                .map_err(|e| bad(e.to_string()))?;
+                outputs.push((path, posture_opt::report::plan_csv(&plan)));
             }
             if let Some(path) = recording {
-                posture_opt::io::write_atomic(
-                    &path,
-                    posture_opt::report::plan_recording_csv(&plan).as_bytes(),
-                )
-                .map_err(|e| bad(e.to_string()))?;
+                outputs.push((path, posture_opt::report::plan_recording_csv(&plan)));
             }
+            if let Some(path) = report {
+                let file = task.display().to_string();
+                let layout = html::Layout {
+                    file: &file,
+                    task: &t,
+                    plan: &plan,
+                    rest: &rest,
+                };
+                outputs.push((path, html::plan_report(&layout)?));
+            }
+            write_outputs(&outputs)?;
             if json {
-                print_json(&plan)
+                print_json(&posture_opt::report::PlanDocument {
+                    plan: &plan,
+                    rest: &rest,
+                })
             } else {
                 print!("{}", posture_opt::report::plan_summary(&plan));
+                print!("{}", posture_opt::report::rest_summary(&rest));
+                Ok(())
+            }
+        }
+        Command::Compare {
+            tasks,
+            no_adapt,
+            json,
+            report,
+            capacity_floor,
+        } => {
+            check_floor(capacity_floor)?;
+            let files: Vec<String> = tasks.iter().map(|p| p.display().to_string()).collect();
+            let loaded = tasks
+                .iter()
+                .map(posture_opt::task::Task::from_file)
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| bad(e.to_string()))?;
+            let (cmp, planned) =
+                posture_opt::compare::compare(&files, &loaded, !no_adapt, capacity_floor)?;
+            if let Some(path) = report {
+                let layouts: Vec<html::Layout> = planned
+                    .iter()
+                    .map(|p| {
+                        let i = files
+                            .iter()
+                            .position(|f| *f == p.outcome.file)
+                            .expect("every planned layout comes from a file");
+                        html::Layout {
+                            file: &files[i],
+                            task: &loaded[i],
+                            plan: &p.plan,
+                            rest: &p.outcome.rest,
+                        }
+                    })
+                    .collect();
+                write_outputs(&[(path, html::compare_report(&cmp, &layouts)?)])?;
+            }
+            if json {
+                print_json(&cmp)
+            } else {
+                print!("{}", posture_opt::compare::comparison_table(&cmp));
+                Ok(())
+            }
+        }
+        Command::Sweep {
+            task,
+            sample,
+            seed,
+            no_adapt,
+            json,
+            capacity_floor,
+        } => {
+            check_floor(capacity_floor)?;
+            let name = task.display().to_string();
+            let text = std::fs::read_to_string(&task)
+                .map_err(|e| bad(format!("{name}: cannot read: {e}")))?;
+            let file: posture_opt::task::TaskFile =
+                serde_saphyr::from_str(&text).map_err(|e| bad(format!("{name}: {e}")))?;
+            let (members, population) = match sample {
+                Some(0) => return Err(bad("--sample must be at least 1")),
+                Some(n) if n > 100_000 => return Err(bad("--sample must be at most 100000")),
+                Some(n) => (
+                    posture_opt::sweep::sampled_population(n, seed),
+                    format!("{n} sampled workers, seed {seed}"),
+                ),
+                None => (
+                    posture_opt::sweep::standard_population(),
+                    "5th/50th/95th-percentile women and men".to_string(),
+                ),
+            };
+            let bar = indicatif::ProgressBar::new(members.len() as u64);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{spinner} planning workers [{bar:30}] {pos}/{len} {elapsed_precise} (eta {eta})",
+                )
+                .expect("valid template")
+                .progress_chars("=> "),
+            );
+            let result = posture_opt::sweep::sweep(
+                &file,
+                &task,
+                &members,
+                &population,
+                !no_adapt,
+                capacity_floor,
+                &|| bar.inc(1),
+            );
+            bar.finish_and_clear();
+            let sw = result.map_err(|e| match e {
+                posture_opt::sweep::SweepError::Task { .. } => bad(format!("{name}: {e}")),
+                posture_opt::sweep::SweepError::Plan { .. } => anyhow!(e),
+            })?;
+            if json {
+                print_json(&sw)
+            } else {
+                print!("{}", posture_opt::sweep::sweep_table(&sw));
                 Ok(())
             }
         }

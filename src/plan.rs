@@ -15,6 +15,7 @@ use crate::fatigue::{MaParams, MaState};
 use crate::optim::{
     solve_phase, FatigueObjective, PhaseInput, PhaseSolution, QpError, SqpSettings, SqpWork,
 };
+use crate::rula::{self, Rula, RulaActivity, RulaPosture};
 use crate::task::Task;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -80,6 +81,8 @@ pub struct PhaseSummary {
     pub min_clearance_m: f64,
     /// The three most-loaded half-joints (relative load), in the last plan's posture.
     pub most_loaded: Vec<(String, f64)>,
+    /// RULA of the posture (default worker body only; `None` for other bodies).
+    pub rula: Option<Rula>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -91,6 +94,7 @@ pub struct Summary {
     pub total_u: f64,
     pub worst_half_joint: String,
     pub worst_u: f64,
+    /// Lowest capacity at the end of the simulated task.
     pub min_capacity: f64,
     pub min_capacity_half_joint: String,
     pub exhaustion: Option<Exhaustion>,
@@ -98,6 +102,8 @@ pub struct Summary {
     pub qp_solves: u64,
     pub sqp_iterations: u64,
     pub phases: Vec<PhaseSummary>,
+    /// Highest RULA grand score over the phases (default worker body only).
+    pub rula_max: Option<i32>,
     /// Filled by [`plan_with_baseline`]: the baseline's total U and the relative change.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub baseline_total_u: Option<f64>,
@@ -121,6 +127,23 @@ pub struct Plan {
     pub half_joints: Vec<HalfJointInfo>,
     pub steps: Vec<Step>,
     pub summary: Summary,
+}
+
+impl Plan {
+    /// Lowest capacity at any time of the plan and its half-joint (step ends suffice: capacity
+    /// is monotone within a held step). 1 and "" for a plan without steps.
+    pub fn lowest_capacity(&self) -> (f64, String) {
+        self.steps
+            .iter()
+            .flat_map(|st| st.capacity.iter())
+            .fold((1.0_f64, String::new()), |a, (h, &c)| {
+                if c < a.0 {
+                    (c, h.clone())
+                } else {
+                    a
+                }
+            })
+    }
 }
 
 /// The planner for one task: owns the statics workspace, the SQP buffers and the QP solver.
@@ -454,6 +477,20 @@ impl<'t> Planner<'t> {
                 loaded.sort_by(|a, b| b.1.total_cmp(&a.1));
                 loaded.truncate(3);
                 let sol = ctx.sols[p];
+                let ph = &t.phases[p];
+                let repeats = t
+                    .phases
+                    .iter()
+                    .filter(|o| o.target_m == ph.target_m && o.hand_force_n == ph.hand_force_n)
+                    .count() as f64;
+                let activity = RulaActivity {
+                    load_kg: ph.hand_force_n.norm() / t.gravity_m_s2.norm().max(1e-9),
+                    held_s: ph.duration_s,
+                    repeats_per_min: repeats * 60.0 / t.cycle_s(),
+                };
+                let rula = RulaPosture::from_worker(&t.model, &mut self.data, &ctx.q_phase[p])
+                    .ok()
+                    .map(|posture| rula::score(&posture, &activity));
                 PhaseSummary {
                     phase: t.phases[p].name.clone(),
                     q_rad: self.names_map(ctx.q_phase[p].iter().copied()),
@@ -465,9 +502,14 @@ impl<'t> Planner<'t> {
                         self.settings.clearance_horizon_m
                     },
                     most_loaded: loaded,
+                    rula,
                 }
             })
-            .collect();
+            .collect::<Vec<PhaseSummary>>();
+        let rula_max = phases
+            .iter()
+            .filter_map(|p| p.rula.as_ref().map(|r| r.grand_score))
+            .max();
         if self.warm_start.is_none() {
             self.warm_start = Some(ctx.q_phase.clone());
         }
@@ -513,6 +555,7 @@ impl<'t> Planner<'t> {
                 qp_solves: self.work.qp.solves - qp_solves_before,
                 sqp_iterations: ctx.sqp_iterations,
                 phases,
+                rula_max,
                 baseline_total_u: None,
                 change_vs_baseline: None,
                 baseline_duration_s: None,

@@ -80,6 +80,16 @@ fn nv(x: Vector) -> Vector3<f64> {
 }
 
 impl Obstacle {
+    /// The obstacle's frame in the world (position and roll-pitch-yaw of its spec).
+    pub fn world_from_obstacle(&self) -> nalgebra::Isometry3<f64> {
+        let [x, y, z] = self.spec.position_m;
+        let [r, p, yaw] = self.spec.rpy_rad;
+        nalgebra::Isometry3::from_parts(
+            nalgebra::Translation3::new(x, y, z),
+            UnitQuaternion::from_euler_angles(r, p, yaw),
+        )
+    }
+
     /// Checks sizes and builds the parry shape.
     pub fn new(spec: ObstacleSpec) -> Result<Self, ObstacleError> {
         let bad = |problem: String| ObstacleError {

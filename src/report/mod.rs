@@ -1,7 +1,53 @@
 //! Plan outputs: the human summary and the CSV timeline (JSON is the serde form of [`Plan`]).
 
+pub mod figures;
+pub mod html;
+
 use crate::plan::Plan;
+use crate::rest::RestAdvice;
+use serde::Serialize;
 use std::fmt::Write;
+
+/// The `plan --json` document: the plan (DESIGN §6) with the work/rest advice added.
+#[derive(Serialize)]
+pub struct PlanDocument<'a> {
+    #[serde(flatten)]
+    pub plan: &'a Plan,
+    pub rest: &'a RestAdvice,
+}
+
+/// Work/rest advice as text lines.
+pub fn rest_summary(r: &RestAdvice) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "work and rest: {:.1} s of work and {:.1} s of rest per cycle",
+        r.work_s_per_cycle, r.current_rest_s
+    );
+    match r.model.rest_s_per_cycle {
+        Some(x) => {
+            let _ = writeln!(
+                o,
+                "  model (recovery): {x:.1} s of rest per cycle keeps every capacity >= {:.2} (lowest now {:.2}, {})",
+                r.capacity_floor, r.model.min_capacity_current, r.model.limiting_half_joint
+            );
+        }
+        None => {
+            let _ = writeln!(o, "  model (recovery): {}", r.model.note);
+        }
+    }
+    let _ = writeln!(
+        o,
+        "  Rohmert (1973) rest allowance: {:.1} s per cycle{}",
+        r.rohmert.rest_s_per_cycle,
+        if r.rohmert.limiting_half_joint.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", r.rohmert.limiting_half_joint)
+        }
+    );
+    o
+}
 
 /// A readable summary: per phase posture and most-loaded groups, capacity at the end, time to
 /// exhaustion if any, total U against the baseline.
@@ -25,7 +71,7 @@ pub fn plan_summary(p: &Plan) -> String {
     for ph in &s.phases {
         let _ = writeln!(
             o,
-            "phase '{}': hand error {:.1} mm{}, clearance {:.0} mm",
+            "phase '{}': hand error {:.1} mm{}, clearance {:.0} mm{}",
             ph.phase,
             ph.hand_error_m * 1000.0,
             if ph.reachable {
@@ -33,7 +79,14 @@ pub fn plan_summary(p: &Plan) -> String {
             } else {
                 " — TARGET OUT OF REACH: nearest reachable posture"
             },
-            ph.min_clearance_m * 1000.0
+            ph.min_clearance_m * 1000.0,
+            ph.rula
+                .as_ref()
+                .map(|r| format!(
+                    ", RULA {} (action level {}: {})",
+                    r.grand_score, r.action_level, r.action
+                ))
+                .unwrap_or_default()
         );
         let q: Vec<String> = ph
             .q_rad

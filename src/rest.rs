@@ -1,0 +1,283 @@
+//! Work and rest: how much rest per cycle keeps every muscle group's capacity above a floor.
+//!
+//! Two answers, side by side:
+//!
+//! * **Model** (Ma et al. 2009 with the recovery term `dc/dt = −k f c + R (1 − c)`): the plan's
+//!   phase loads are replayed cycle by cycle, exactly (closed forms per held step), with a rest
+//!   of `r` seconds (rest posture, no load) at the end of each cycle. The smallest `r` (to 0.1 s)
+//!   for which every group's capacity stays at or above the floor — and above its load, so
+//!   nothing is exhausted — over the task's cycles is found by bisection. Capacity is monotone
+//!   within a held step, so checking step ends is exact. The postures are the plan's; more or
+//!   less rest would let the adaptive planner choose slightly different ones (not re-planned).
+//!   With `R = 0` (the paper's model) rest restores nothing and only "no rest needed" or
+//!   "rest cannot help" are possible answers.
+//! * **Rohmert (1973)**, the classic rest-allowance rule for static work: a hold of `t` minutes
+//!   at relative load `f > 0.15` needs `RA = 18 · (t/T)^1.4 · (f − 0.15)^0.5` of `t` as rest,
+//!   where `T(f) = −1.5 + 2.1/f − 0.6/f² + 0.1/f³` min is Rohmert's endurance time (Table 2's
+//!   rohmert-general). Per group, the rest of a cycle is the sum over its phases; the cycle
+//!   needs the largest group's. Source: W. Rohmert, Problems of determination of rest
+//!   allowances, Part 2, Applied Ergonomics 4(3):158–162 (1973), formula as commonly cited; the
+//!   original was not available to check here.
+//!
+//! The floor is a planning choice (default [`DEFAULT_CAPACITY_FLOOR`], an ASSUMPTION: keep 70 %
+//! of MVC available).
+
+use crate::body::holding_torques;
+use crate::fatigue::MaState;
+use crate::plan::Plan;
+use crate::task::Task;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Default capacity floor (fraction of MVC) — an ASSUMPTION, not from the literature.
+pub const DEFAULT_CAPACITY_FLOOR: f64 = 0.7;
+
+/// The model's answer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelRest {
+    /// Lowest capacity over the task with the task's own rest, and where.
+    pub min_capacity_current: f64,
+    pub limiting_half_joint: String,
+    /// Rest per cycle [s] that keeps every capacity at or above the floor; `None`: no amount
+    /// of rest does (see `note`).
+    pub rest_s_per_cycle: Option<f64>,
+    pub min_capacity_at_recommended: Option<f64>,
+    pub note: String,
+}
+
+/// Rohmert's rest allowance for one half-joint.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RohmertGroup {
+    pub half_joint: String,
+    pub rest_s_per_cycle: f64,
+}
+
+/// Rohmert's answer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RohmertRest {
+    pub rest_s_per_cycle: f64,
+    pub limiting_half_joint: String,
+    /// Groups needing any rest, largest first.
+    pub groups: Vec<RohmertGroup>,
+    /// Holds above 100 % MVC, for which the rule has no answer.
+    pub over_mvc: Vec<String>,
+}
+
+/// Rest advice for a plan.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RestAdvice {
+    pub capacity_floor: f64,
+    pub current_rest_s: f64,
+    pub work_s_per_cycle: f64,
+    pub model: ModelRest,
+    pub rohmert: RohmertRest,
+}
+
+/// Rohmert's endurance time [min] at relative load `f` (valid for 0.15 < f ≤ 1).
+pub fn rohmert_endurance_min(f: f64) -> f64 {
+    -1.5 + 2.1 / f - 0.6 / (f * f) + 0.1 / (f * f * f)
+}
+
+/// Rohmert's rest allowance as a fraction of a hold of `hold_s` seconds at load `f`
+/// (0 at or below 15 % MVC; `None` above 100 % MVC).
+pub fn rohmert_allowance(f: f64, hold_s: f64) -> Option<f64> {
+    if f <= 0.15 {
+        return Some(0.0);
+    }
+    if f > 1.0 {
+        return None;
+    }
+    let t_min = hold_s / 60.0;
+    Some(18.0 * (t_min / rohmert_endurance_min(f)).powf(1.4) * (f - 0.15).sqrt())
+}
+
+/// Loads of each half-joint in the rest posture (all joints at 0, no hand load).
+pub fn rest_loads(task: &Task) -> Vec<f64> {
+    let mut data = crate::body::StaticsData::new(&task.model);
+    let q = vec![0.0; task.model.nq()];
+    holding_torques(
+        &task.model,
+        &mut data,
+        &q,
+        task.hand_link,
+        &Vector3::zeros(),
+        &task.gravity_m_s2,
+    );
+    task.half_joints
+        .iter()
+        .map(|h| h.load(data.tau_nm[h.q_index], q[h.q_index]))
+        .collect()
+}
+
+/// The per-cycle work loads of a plan: for each cycle, the loads of each phase (half-joint
+/// order of the task). Cycles the plan did not complete repeat the last complete one.
+fn cycle_loads(task: &Task, plan: &Plan) -> Option<Vec<Vec<Vec<f64>>>> {
+    let done = plan.summary.cycles_done as usize;
+    let mut cycles: Vec<Vec<Vec<f64>>> = vec![Vec::with_capacity(task.phases.len()); done];
+    for s in plan.steps.iter().filter(|s| s.target_position_m.is_some()) {
+        if let Some(c) = cycles.get_mut(s.cycle as usize) {
+            c.push(
+                task.half_joints
+                    .iter()
+                    .map(|h| s.load.get(&h.id).copied().unwrap_or(0.0))
+                    .collect(),
+            );
+        }
+    }
+    let last = cycles.last()?.clone();
+    cycles.resize(task.cycles as usize, last);
+    Some(cycles)
+}
+
+/// Replays the task with `rest_s` per cycle: (smallest margin above max(floor, load), lowest
+/// capacity, its half-joint).
+fn replay(
+    task: &Task,
+    loads: &[Vec<Vec<f64>>],
+    f_rest: &[f64],
+    rest_s: f64,
+    floor: f64,
+    state: &mut [MaState],
+) -> (f64, f64, usize) {
+    state.fill(MaState::FRESH);
+    let mut margin = f64::INFINITY;
+    let mut min_c = (f64::INFINITY, 0);
+    let mut check = |state: &[MaState], f: &[f64]| {
+        for (h, s) in state.iter().enumerate() {
+            margin = margin.min(s.capacity - floor.max(f[h]));
+            if s.capacity < min_c.0 {
+                min_c = (s.capacity, h);
+            }
+        }
+    };
+    for cycle in loads {
+        for (p, f) in cycle.iter().enumerate() {
+            for (h, s) in state.iter_mut().enumerate() {
+                task.fatigue[h].hold(s, f[h], task.phases[p].duration_s);
+            }
+            check(state, f);
+        }
+        if rest_s > 0.0 {
+            for (h, s) in state.iter_mut().enumerate() {
+                task.fatigue[h].hold(s, f_rest[h], rest_s);
+            }
+            check(state, f_rest);
+        }
+    }
+    (margin, min_c.0, min_c.1)
+}
+
+/// Rest advice for `plan` (a plan of `task`) with capacity floor `floor` in (0, 1).
+pub fn rest_advice(task: &Task, plan: &Plan, floor: f64) -> RestAdvice {
+    let work_s: f64 = task.phases.iter().map(|p| p.duration_s).sum();
+    let ids = |h: usize| task.half_joints[h].id.clone();
+    let rohmert = rohmert_rest(task, plan);
+    let model = match cycle_loads(task, plan) {
+        None => ModelRest {
+            min_capacity_current: plan.summary.min_capacity,
+            limiting_half_joint: plan.summary.min_capacity_half_joint.clone(),
+            rest_s_per_cycle: None,
+            min_capacity_at_recommended: None,
+            note: "a muscle group is exhausted within the first cycle: rest between cycles cannot help; lower the load or change the layout".into(),
+        },
+        Some(loads) => {
+            let f_rest = rest_loads(task);
+            let mut state = vec![MaState::FRESH; task.half_joints.len()];
+            let (_, c_now, h_now) = replay(task, &loads, &f_rest, task.rest_s, floor, &mut state);
+            let feasible =
+                |r: f64, st: &mut [MaState]| replay(task, &loads, &f_rest, r, floor, st).0 >= 0.0;
+            let r_max = 10.0 * work_s;
+            let any_recovery = task.fatigue.iter().any(|p| p.r_per_min > 0.0);
+            let (rest, note) = if feasible(0.0, &mut state) {
+                (Some(0.0), "no rest needed to stay above the floor".to_string())
+            } else if !feasible(r_max, &mut state) {
+                let why = if any_recovery {
+                    format!(
+                        "even {r_max:.0} s of rest per cycle (10x the work time) does not keep every group above the floor: a single cycle's work takes it too low; lower the load or change the layout"
+                    )
+                } else {
+                    "the fatigue model has no recovery (R = 0): rest restores nothing; give recovery_per_min in the task to size rests".to_string()
+                };
+                (None, why)
+            } else {
+                let (mut lo, mut hi) = (0.0, r_max);
+                while hi - lo > 0.05 {
+                    let mid = 0.5 * (lo + hi);
+                    if feasible(mid, &mut state) {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                let r = (hi * 10.0).ceil() / 10.0;
+                (
+                    Some(r),
+                    "smallest rest per cycle (0.1 s steps) keeping every capacity at or above the floor, with the plan's postures".to_string(),
+                )
+            };
+            let c_rec = rest.map(|r| replay(task, &loads, &f_rest, r, floor, &mut state).1);
+            ModelRest {
+                min_capacity_current: c_now,
+                limiting_half_joint: ids(h_now),
+                rest_s_per_cycle: rest,
+                min_capacity_at_recommended: c_rec,
+                note,
+            }
+        }
+    };
+    RestAdvice {
+        capacity_floor: floor,
+        current_rest_s: task.rest_s,
+        work_s_per_cycle: work_s,
+        model,
+        rohmert,
+    }
+}
+
+fn rohmert_rest(task: &Task, plan: &Plan) -> RohmertRest {
+    let nh = task.half_joints.len();
+    let mut need = vec![0.0_f64; nh];
+    let mut over = vec![false; nh];
+    let mut per_cycle = vec![0.0_f64; nh];
+    let mut cycle = u32::MAX;
+    for s in plan.steps.iter().filter(|s| s.target_position_m.is_some()) {
+        if s.cycle != cycle {
+            for h in 0..nh {
+                need[h] = need[h].max(per_cycle[h]);
+            }
+            per_cycle.fill(0.0);
+            cycle = s.cycle;
+        }
+        for (h, hj) in task.half_joints.iter().enumerate() {
+            let f = s.load.get(&hj.id).copied().unwrap_or(0.0);
+            match rohmert_allowance(f, s.duration_s) {
+                Some(ra) => per_cycle[h] += ra * s.duration_s,
+                None => over[h] = true,
+            }
+        }
+    }
+    for h in 0..nh {
+        need[h] = need[h].max(per_cycle[h]);
+    }
+    let mut groups: Vec<RohmertGroup> = (0..nh)
+        .filter(|&h| need[h] > 0.0)
+        .map(|h| RohmertGroup {
+            half_joint: task.half_joints[h].id.clone(),
+            rest_s_per_cycle: need[h],
+        })
+        .collect();
+    groups.sort_by(|a, b| b.rest_s_per_cycle.total_cmp(&a.rest_s_per_cycle));
+    let (rest, limiting) = groups
+        .first()
+        .map(|g| (g.rest_s_per_cycle, g.half_joint.clone()))
+        .unwrap_or((0.0, String::new()));
+    RohmertRest {
+        rest_s_per_cycle: rest,
+        limiting_half_joint: limiting,
+        groups,
+        over_mvc: (0..nh)
+            .filter(|&h| over[h])
+            .map(|h| task.half_joints[h].id.clone())
+            .collect(),
+    }
+}
