@@ -180,7 +180,9 @@ pub fn comparison_table(c: &Comparison) -> String {
         (Some(r), Some(p)) => format!("{r} ('{p}')"),
         _ => "n/a (not the worker body)".into(),
     });
-    row("rest per cycle now", &|o| format!("{:.1} s", o.rest.current_rest_s));
+    row("rest per cycle now", &|o| {
+        format!("{:.1} s", o.rest.current_rest_s)
+    });
     row(
         &format!("rest needed, model (floor {:.2})", c.capacity_floor),
         &|o| match o.rest.model.rest_s_per_cycle {

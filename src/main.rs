@@ -313,7 +313,9 @@ fn check_floor(f: f64) -> Result<()> {
     if f.is_finite() && f > 0.0 && f < 1.0 {
         Ok(())
     } else {
-        Err(bad(format!("--capacity-floor must be between 0 and 1, got {f}")))
+        Err(bad(format!(
+            "--capacity-floor must be between 0 and 1, got {f}"
+        )))
     }
 }
 

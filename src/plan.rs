@@ -133,16 +133,16 @@ impl Plan {
     /// Lowest capacity at any time of the plan and its half-joint (step ends suffice: capacity
     /// is monotone within a held step). 1 and "" for a plan without steps.
     pub fn lowest_capacity(&self) -> (f64, String) {
-        self.steps
-            .iter()
-            .flat_map(|st| st.capacity.iter())
-            .fold((1.0_f64, String::new()), |a, (h, &c)| {
+        self.steps.iter().flat_map(|st| st.capacity.iter()).fold(
+            (1.0_f64, String::new()),
+            |a, (h, &c)| {
                 if c < a.0 {
                     (c, h.clone())
                 } else {
                     a
                 }
-            })
+            },
+        )
     }
 }
 

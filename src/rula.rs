@@ -278,7 +278,10 @@ fn step(
 /// Action level (1–4) and its wording for a grand score.
 pub fn action_level(grand: i32) -> (i32, &'static str) {
     match grand {
-        ..=2 => (1, "acceptable if not maintained or repeated for long periods"),
+        ..=2 => (
+            1,
+            "acceptable if not maintained or repeated for long periods",
+        ),
         3..=4 => (2, "investigate further; changes may be needed"),
         5..=6 => (3, "investigate further and change soon"),
         _ => (4, "investigate and change immediately"),
@@ -356,7 +359,13 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
     } else {
         (3, "more than 15 deg flexion or extension")
     };
-    ws.push(step("3", "wrist position", Some(p.wrist_flexion_deg), rule, wr0));
+    ws.push(step(
+        "3",
+        "wrist position",
+        Some(p.wrist_flexion_deg),
+        rule,
+        wr0,
+    ));
     let bent = p.wrist_deviation_deg.abs() > ADJUSTMENT_THRESHOLD_DEG;
     ws.push(step(
         "3a",
@@ -471,7 +480,11 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
         "10a",
         "trunk adjustment: twist",
         Some(p.trunk_twist_deg),
-        if twisted { "twisted: +1" } else { "not twisted: +0" },
+        if twisted {
+            "twisted: +1"
+        } else {
+            "not twisted: +0"
+        },
         i32::from(twisted),
     ));
     ws.push(step(
@@ -494,8 +507,7 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
         "ASSUMPTION: not modelled; standing, weight evenly on both feet",
         legs,
     ));
-    let posture_b =
-        TABLE_B[(neck - 1) as usize][((trunk - 1) * 2 + legs - 1) as usize] as i32;
+    let posture_b = TABLE_B[(neck - 1) as usize][((trunk - 1) * 2 + legs - 1) as usize] as i32;
     ws.push(step(
         "12",
         "posture score B (Table B)",

@@ -286,10 +286,7 @@ fn problem_text(p: &Problem) -> String {
         Problem::OutOfReach {
             phase,
             hand_error_m,
-        } => format!(
-            "'{phase}' out of reach by {:.0} mm",
-            1000.0 * hand_error_m
-        ),
+        } => format!("'{phase}' out of reach by {:.0} mm", 1000.0 * hand_error_m),
         Problem::Collision { phase, clearance_m } => format!(
             "'{phase}' collides ({:.0} mm into an obstacle)",
             -1000.0 * clearance_m

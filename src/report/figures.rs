@@ -87,12 +87,13 @@ pub fn curve_svg(plan: &Plan, curve: Curve, floor: Option<f64>) -> Result<String
     let t_max = (plan.summary.duration_s / 60.0).max(1e-6);
     let y_max = match curve {
         Curve::Capacity => 1.0,
-        Curve::FatigueU => data
-            .iter()
-            .flat_map(|(_, p)| p.iter().map(|x| x.1))
-            .fold(0.0_f64, f64::max)
-            .max(1e-6)
-            * 1.05,
+        Curve::FatigueU => {
+            data.iter()
+                .flat_map(|(_, p)| p.iter().map(|x| x.1))
+                .fold(0.0_f64, f64::max)
+                .max(1e-6)
+                * 1.05
+        }
     };
     let mut out = String::new();
     {
@@ -273,7 +274,14 @@ fn hull(mut pts: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
 
 /// Projected outline of each obstacle (name, polygon) or, for planes seen edge-on, a line
 /// across the view (two points far apart).
-fn obstacle_outlines(ws: &Workstation, view: View) -> Vec<(String, Vec<(f64, f64)>, bool)> {
+/// An obstacle's projected outline: a polygon, or a line for a plane seen edge-on.
+struct Outline {
+    name: String,
+    points: Vec<(f64, f64)>,
+    is_line: bool,
+}
+
+fn obstacle_outlines(ws: &Workstation, view: View) -> Vec<Outline> {
     let mut out = Vec::new();
     for ob in &ws.obstacles {
         let pose = ob.world_from_obstacle();
@@ -288,7 +296,11 @@ fn obstacle_outlines(ws: &Workstation, view: View) -> Vec<(String, Vec<(f64, f64
             ShapeSpec::Cylinder { radius_m, height_m } => (0..32)
                 .map(|i| {
                     let a = std::f64::consts::TAU * (i % 16) as f64 / 16.0;
-                    let z = if i < 16 { -height_m / 2.0 } else { height_m / 2.0 };
+                    let z = if i < 16 {
+                        -height_m / 2.0
+                    } else {
+                        height_m / 2.0
+                    };
                     (pose * Point3::new(radius_m * a.cos(), radius_m * a.sin(), z)).coords
                 })
                 .collect(),
@@ -301,16 +313,20 @@ fn obstacle_outlines(ws: &Workstation, view: View) -> Vec<(String, Vec<(f64, f64
                 let p0 = pose.translation.vector;
                 let a = p0 - along * 50.0;
                 let b = p0 + along * 50.0;
-                out.push((
-                    ob.spec.name.clone(),
-                    vec![view.project(&a), view.project(&b)],
-                    true,
-                ));
+                out.push(Outline {
+                    name: ob.spec.name.clone(),
+                    points: vec![view.project(&a), view.project(&b)],
+                    is_line: true,
+                });
                 continue;
             }
         };
         let proj = pts.iter().map(|p| view.project(p)).collect();
-        out.push((ob.spec.name.clone(), hull(proj), false));
+        out.push(Outline {
+            name: ob.spec.name.clone(),
+            points: hull(proj),
+            is_line: false,
+        });
     }
     out
 }
@@ -339,9 +355,9 @@ pub fn bounds(scenes: &[&Scene], ws: &Workstation, view: View) -> ((f64, f64), (
             add(view.project(t));
         }
     }
-    for (_, poly, is_line) in obstacle_outlines(ws, view) {
-        if !is_line {
-            poly.into_iter().for_each(&mut add);
+    for o in obstacle_outlines(ws, view) {
+        if !o.is_line {
+            o.points.into_iter().for_each(&mut add);
         }
     }
     let pad = 0.1;
@@ -366,8 +382,13 @@ pub fn posture_svg(
         r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width_px:.0}" height="{height_px:.0}" viewBox="0 0 {width_px:.1} {height_px:.1}" role="img" aria-label="{} view"><rect width="100%" height="100%" fill="#fbfbf8"/>"##,
         view.name()
     );
-    for (name, poly, is_line) in obstacle_outlines(ws, view) {
-        let pts: Vec<String> = poly
+    for Outline {
+        name,
+        points,
+        is_line,
+    } in obstacle_outlines(ws, view)
+    {
+        let pts: Vec<String> = points
             .iter()
             .map(|p| {
                 let (x, y) = px(*p);

@@ -85,7 +85,11 @@ fn summary_table(o: &mut String, l: &Layout) {
     row(
         o,
         "lowest capacity",
-        &format!("{:.2} ({})", s.min_capacity, esc(&s.min_capacity_half_joint)),
+        &format!(
+            "{:.2} ({})",
+            s.min_capacity,
+            esc(&s.min_capacity_half_joint)
+        ),
     );
     row(
         o,
@@ -119,14 +123,14 @@ fn rest_table(o: &mut String, r: &RestAdvice) {
     row(
         o,
         "work per cycle / rest now",
-        &format!(
-            "{:.1} s / {:.1} s",
-            r.work_s_per_cycle, r.current_rest_s
-        ),
+        &format!("{:.1} s / {:.1} s", r.work_s_per_cycle, r.current_rest_s),
     );
     row(
         o,
-        &format!("model: rest per cycle for capacity ≥ {:.2}", r.capacity_floor),
+        &format!(
+            "model: rest per cycle for capacity ≥ {:.2}",
+            r.capacity_floor
+        ),
         &match r.model.rest_s_per_cycle {
             Some(x) => format!(
                 "<b>{x:.1} s</b> (lowest capacity then {:.2}); now the lowest is {:.2} ({})",
@@ -184,7 +188,13 @@ fn phases_html(o: &mut String, l: &Layout) -> Result<(), ReportError> {
         o.push_str("<div class=\"views\">");
         for (view, b) in [(View::Side, b_side), (View::Front, b_front)] {
             let w = (b.1 .0 - b.0 .0) * px_per_m;
-            o.push_str(&posture_svg(sc, &t.workstation, view, b, w.clamp(120.0, 480.0)));
+            o.push_str(&posture_svg(
+                sc,
+                &t.workstation,
+                view,
+                b,
+                w.clamp(120.0, 480.0),
+            ));
         }
         o.push_str("</div><p>");
         let _ = write!(
@@ -281,8 +291,11 @@ pub fn plan_report(l: &Layout) -> Result<String, ReportError> {
     Ok(document(&format!("Plan: {}", l.plan.task), &body))
 }
 
+/// A comparison-table column: heading and cell.
+type Column<'a> = (&'a str, &'a dyn Fn(&LayoutOutcome) -> String);
+
 fn comparison_html(o: &mut String, c: &Comparison) {
-    let cols: &[(&str, &dyn Fn(&LayoutOutcome) -> String)] = &[
+    let cols: &[Column] = &[
         ("rank", &|x| x.rank.to_string()),
         ("layout", &|x| {
             format!("{}<br><small>{}</small>", esc(&x.task), esc(&x.file))
@@ -305,10 +318,13 @@ fn comparison_html(o: &mut String, c: &Comparison) {
         ("worst RULA", &|x| {
             x.rula_max.map_or("n/a".into(), |r| r.to_string())
         }),
-        ("rest needed (model)", &|x| match x.rest.model.rest_s_per_cycle {
-            Some(r) => format!("{r:.1} s"),
-            None => "<span class=\"bad\">rest cannot help</span>".into(),
-        }),
+        (
+            "rest needed (model)",
+            &|x| match x.rest.model.rest_s_per_cycle {
+                Some(r) => format!("{r:.1} s"),
+                None => "<span class=\"bad\">rest cannot help</span>".into(),
+            },
+        ),
         ("rest (Rohmert)", &|x| {
             format!("{:.1} s", x.rest.rohmert.rest_s_per_cycle)
         }),
