@@ -608,7 +608,7 @@ fn run(cli: Cli) -> Result<()> {
             );
             bar.finish_and_clear();
             let sw = result.map_err(|e| match e {
-                posture_opt::sweep::SweepError::Task { .. } => bad(format!("{name}: {e}")),
+                posture_opt::sweep::SweepError::Task { .. } => bad(e.to_string()),
                 posture_opt::sweep::SweepError::Plan { .. } => anyhow!(e),
             })?;
             if json {
