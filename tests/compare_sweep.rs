@@ -30,23 +30,35 @@ fn compare_ranks_and_agrees_with_plan() {
         "tasks/overhead_drilling.yaml",
         "tasks/shelf_high.yaml",
         "tasks/shelf.yaml",
+        "tasks/shelf_lowered.yaml",
         "--json",
     ]);
     let l = c["layouts"].as_array().unwrap();
-    assert_eq!(l.len(), 3);
+    assert_eq!(l.len(), 4);
     let files: Vec<&str> = l.iter().map(|x| x["file"].as_str().unwrap()).collect();
-    // Both shelf layouts hold the hour; shelf.yaml has the lower total U; the drilling task
-    // exhausts and ranks last whatever its U.
+    // The shelf layouts hold the hour and rank by total U (lower boards, less shoulder
+    // flexion: lower U); the drilling task exhausts and ranks last although its U is smallest.
     assert_eq!(
         files,
         [
+            "tasks/shelf_lowered.yaml",
             "tasks/shelf.yaml",
             "tasks/shelf_high.yaml",
             "tasks/overhead_drilling.yaml"
         ]
     );
-    assert!(l[2]["exhaustion"]["t_s"].as_f64().unwrap() > 0.0);
-    assert!(l[0]["total_u_min"].as_f64() < l[1]["total_u_min"].as_f64());
+    assert!(l[3]["exhaustion"]["t_s"].as_f64().unwrap() > 0.0);
+    assert!(l[3]["total_u_min"].as_f64() < l[0]["total_u_min"].as_f64());
+    for i in 0..2 {
+        assert!(l[i]["total_u_min"].as_f64() < l[i + 1]["total_u_min"].as_f64());
+        assert!(l[i]["exhaustion"].is_null());
+    }
+    // Lowering the boards relieves the shoulder flexors and needs less rest.
+    assert!(l[0]["worst_u_min"].as_f64() < l[1]["worst_u_min"].as_f64());
+    assert!(
+        l[0]["rest"]["model"]["rest_s_per_cycle"].as_f64()
+            < l[1]["rest"]["model"]["rest_s_per_cycle"].as_f64()
+    );
     for (i, x) in l.iter().enumerate() {
         assert_eq!(x["rank"], i + 1);
         for key in [
@@ -64,15 +76,15 @@ fn compare_ranks_and_agrees_with_plan() {
     }
     // The comparison's figures are the plan's.
     let p = json(&["plan", "tasks/shelf.yaml", "--json"]);
-    assert_eq!(l[0]["total_u_min"], p["summary"]["total_u"]);
-    assert_eq!(l[0]["worst_u_min"], p["summary"]["worst_u"]);
-    assert_eq!(l[0]["rula_max"], p["summary"]["rula_max"]);
+    assert_eq!(l[1]["total_u_min"], p["summary"]["total_u"]);
+    assert_eq!(l[1]["worst_u_min"], p["summary"]["worst_u"]);
+    assert_eq!(l[1]["rula_max"], p["summary"]["rula_max"]);
     assert_eq!(
-        l[0]["rest"]["model"]["rest_s_per_cycle"],
+        l[1]["rest"]["model"]["rest_s_per_cycle"],
         p["rest"]["model"]["rest_s_per_cycle"]
     );
     // The lowest capacity over time is at most every step's capacity.
-    let minc = l[0]["min_capacity"].as_f64().unwrap();
+    let minc = l[1]["min_capacity"].as_f64().unwrap();
     for s in p["steps"].as_array().unwrap() {
         for c in s["capacity"].as_object().unwrap().values() {
             assert!(c.as_f64().unwrap() >= minc - 1e-15);
