@@ -82,14 +82,11 @@ fn summary_table(o: &mut String, l: &Layout) {
         "most-fatigued group",
         &format!("{} (U = {:.2} min)", esc(&s.worst_half_joint), s.worst_u),
     );
+    let (min_c, min_h) = l.plan.lowest_capacity();
     row(
         o,
-        "lowest capacity",
-        &format!(
-            "{:.2} ({})",
-            s.min_capacity,
-            esc(&s.min_capacity_half_joint)
-        ),
+        "lowest capacity (at any time)",
+        &format!("{min_c:.2} ({})", esc(&min_h)),
     );
     row(
         o,
