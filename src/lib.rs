@@ -37,7 +37,25 @@
 //! * [`workstation`]: obstacles and capsule clearances (parry3d).
 //! * [`task`]: task files → validated tasks.
 //! * [`optim`]: the per-phase sequential QP (clarabel).
-//! * [`plan`]: the planning loop and the `Plan` document; [`report`]: its summary and CSV.
+//! * [`plan`]: the planning loop and the `Plan` document; [`report`]: its summary, CSV and the
+//!   self-contained HTML report ([`report::html`]).
+//! * [`rula`]: RULA from a posture, with the worksheet; [`rest`]: work/rest advice (the model's
+//!   recovery against Rohmert's rule); [`compare`]: layouts ranked; [`sweep`]: populations.
+//!
+//! # Assessing a plan
+//!
+//! ```
+//! use posture_opt::{plan::plan_with_baseline, rest::rest_advice, task::Task};
+//!
+//! let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf_lowered.yaml")).unwrap();
+//! let (plan, _) = plan_with_baseline(&task, true).unwrap();
+//! // RULA per phase (the default worker body): grand scores 1-7
+//! let rula: Vec<i32> = plan.summary.phases.iter().map(|p| p.rula.as_ref().unwrap().grand_score).collect();
+//! assert!(rula.iter().all(|g| (1..=7).contains(g)));
+//! // with the boards lowered, the task's 6 s of rest per cycle keeps every capacity >= 0.7
+//! let rest = rest_advice(&task, &plan, 0.7);
+//! assert!(rest.model.rest_s_per_cycle.unwrap() <= task.rest_s);
+//! ```
 
 pub mod body;
 pub mod compare;

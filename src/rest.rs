@@ -80,6 +80,13 @@ pub fn rohmert_endurance_min(f: f64) -> f64 {
 
 /// Rohmert's rest allowance as a fraction of a hold of `hold_s` seconds at load `f`
 /// (0 at or below 15 % MVC; `None` above 100 % MVC).
+///
+/// ```
+/// use posture_opt::rest::{rohmert_allowance, rohmert_endurance_min};
+/// // T(0.5) = -1.5 + 4.2 - 2.4 + 0.8 = 1.1 min; holding that long needs 18·√0.35 ≈ 10.65 × t
+/// assert!((rohmert_endurance_min(0.5) - 1.1).abs() < 1e-12);
+/// assert!((rohmert_allowance(0.5, 66.0).unwrap() - 10.649).abs() < 1e-3);
+/// ```
 pub fn rohmert_allowance(f: f64, hold_s: f64) -> Option<f64> {
     if f <= 0.15 {
         return Some(0.0);

@@ -289,6 +289,20 @@ pub fn action_level(grand: i32) -> (i32, &'static str) {
 }
 
 /// Scores one posture: the RULA worksheet, steps 1–15.
+///
+/// ```
+/// use posture_opt::rula::{score, RulaActivity, RulaPosture};
+/// // Upper arm 50° (3), elbow 80° (1), wrist 10° (2), twist mid-range (1): Table A gives 4;
+/// // 4 kg intermittent adds 1: C = 5. Trunk 15° (2): Table B gives 2, D = 3. Table C: 4.
+/// let p = RulaPosture {
+///     upper_arm_flexion_deg: 50.0, upper_arm_abduction_deg: 0.0, elbow_flexion_deg: 80.0,
+///     hand_across_midline: false, hand_out_to_side: false, wrist_flexion_deg: 10.0,
+///     wrist_deviation_deg: 0.0, wrist_twist_fraction: 0.0, trunk_flexion_deg: 15.0,
+///     trunk_twist_deg: 0.0, trunk_side_bend_deg: 0.0,
+/// };
+/// let r = score(&p, &RulaActivity { load_kg: 4.0, held_s: 3.0, repeats_per_min: 3.0 });
+/// assert_eq!((r.posture_a, r.score_c, r.score_d, r.grand_score, r.action_level), (4, 5, 3, 4, 2));
+/// ```
 pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
     let mut ws = Vec::with_capacity(20);
     let tol = NEUTRAL_TOLERANCE_DEG;
