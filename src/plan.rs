@@ -74,7 +74,7 @@ pub struct Exhaustion {
 #[derive(Debug, Clone, Serialize)]
 pub struct PhaseSummary {
     pub phase: String,
-    /// Posture of the last plan [rad].
+    /// Posture of the last plan \[rad\].
     pub q_rad: BTreeMap<String, f64>,
     pub hand_error_m: f64,
     pub reachable: bool,

@@ -38,7 +38,7 @@ pub struct ModelRest {
     /// Lowest capacity over the task with the task's own rest, and where.
     pub min_capacity_current: f64,
     pub limiting_half_joint: String,
-    /// Rest per cycle [s] that keeps every capacity at or above the floor; `None`: no amount
+    /// Rest per cycle \[s\] that keeps every capacity at or above the floor; `None`: no amount
     /// of rest does (see `note`).
     pub rest_s_per_cycle: Option<f64>,
     pub min_capacity_at_recommended: Option<f64>,
@@ -73,7 +73,7 @@ pub struct RestAdvice {
     pub rohmert: RohmertRest,
 }
 
-/// Rohmert's endurance time [min] at relative load `f` (valid for 0.15 < f ≤ 1).
+/// Rohmert's endurance time \[min\] at relative load `f` (valid for 0.15 < f ≤ 1).
 pub fn rohmert_endurance_min(f: f64) -> f64 {
     -1.5 + 2.1 / f - 0.6 / (f * f) + 0.1 / (f * f * f)
 }

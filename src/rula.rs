@@ -30,7 +30,7 @@ pub const ADJUSTMENT_THRESHOLD_DEG: f64 = 10.0;
 pub const ABDUCTION_THRESHOLD_DEG: f64 = 20.0;
 /// The wrist twist is "near the end of range" beyond this fraction of the joint's limit.
 pub const TWIST_END_FRACTION: f64 = 0.75;
-/// The hand is "out to the side" beyond this lateral distance from the shoulder [m].
+/// The hand is "out to the side" beyond this lateral distance from the shoulder \[m\].
 pub const OUT_TO_SIDE_M: f64 = 0.10;
 
 /// Table A of McAtamney & Corlett (1993): [upper arm 1–6][lower arm 1–3][wrist 1–4 × twist 1–2].
@@ -121,9 +121,9 @@ pub struct RulaPosture {
 /// How the posture is used: what the hand holds and how often / long the posture recurs.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RulaActivity {
-    /// Load in the hand [kg] (hand force magnitude / g).
+    /// Load in the hand \[kg\] (hand force magnitude / g).
     pub load_kg: f64,
-    /// How long the posture is held at a time [s].
+    /// How long the posture is held at a time \[s\].
     pub held_s: f64,
     /// How many times per minute the posture recurs.
     pub repeats_per_min: f64,

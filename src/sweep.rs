@@ -35,7 +35,7 @@ pub struct Member {
     pub worker: Worker,
 }
 
-/// Stature mean and SD [m], mass 5th/50th/95th percentiles [kg] per sex.
+/// Stature mean and SD \[m\], mass 5th/50th/95th percentiles \[kg\] per sex.
 struct SexData {
     stature_mean_m: f64,
     stature_sd_m: f64,

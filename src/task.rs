@@ -31,7 +31,7 @@ pub struct TaskFile {
     pub workstation: WorkstationFile,
     pub phases: Vec<PhaseFile>,
     pub cycles: u32,
-    /// Rest at the end of each cycle [s], arms hanging, no load.
+    /// Rest at the end of each cycle \[s\], arms hanging, no load.
     #[serde(default)]
     pub rest_s: f64,
     #[serde(default)]
@@ -55,12 +55,12 @@ pub struct WorkstationFile {
 #[serde(deny_unknown_fields)]
 pub struct PhaseFile {
     pub name: String,
-    /// Hand target [m], world frame.
+    /// Hand target \[m\], world frame.
     pub target_m: [f64; 3],
-    /// A carried load [kg] (force = mass × gravity) ...
+    /// A carried load \[kg\] (force = mass × gravity) ...
     #[serde(default)]
     pub load_kg: Option<f64>,
-    /// ... or the force the environment applies on the hand [N].
+    /// ... or the force the environment applies on the hand \[N\].
     #[serde(default)]
     pub hand_force_n: Option<[f64; 3]>,
     pub duration_s: f64,
@@ -169,11 +169,11 @@ pub struct Task {
 }
 
 impl Task {
-    /// Length of one cycle [s].
+    /// Length of one cycle \[s\].
     pub fn cycle_s(&self) -> f64 {
         self.phases.iter().map(|p| p.duration_s).sum::<f64>() + self.rest_s
     }
-    /// Planned duration of the whole task [s].
+    /// Planned duration of the whole task \[s\].
     pub fn duration_s(&self) -> f64 {
         self.cycle_s() * self.cycles as f64
     }

@@ -104,7 +104,7 @@ pub struct BodyModel {
     pub q_parent_body: Vec<usize>,
     pub q_body_rot_joint: Vec<Matrix3<f64>>,
     pub q_body_pos_joint: Vec<Vector3<f64>>,
-    /// Mass below each moving joint [kg] (posture-independent), per q index.
+    /// Mass below each moving joint \[kg\] (posture-independent), per q index.
     pub q_subtree_mass_kg: Vec<f64>,
 }
 
@@ -554,7 +554,7 @@ impl BodyModel {
         self.link_anc[l * self.joints.len() + i]
     }
 
-    /// Total mass [kg].
+    /// Total mass \[kg\].
     pub fn total_mass_kg(&self) -> f64 {
         self.links.iter().map(|l| l.mass_kg).sum()
     }

@@ -82,7 +82,7 @@ impl Worker {
 }
 
 /// de Leva (1996) Table 4 values for one sex: mass fraction and CM (fraction of length from the
-/// proximal endpoint); lengths [m] of the reference subject.
+/// proximal endpoint); lengths \[m\] of the reference subject.
 struct DeLeva {
     ref_stature_m: f64,
     upper_arm: (f64, f64, f64),
@@ -132,14 +132,14 @@ mod proportions {
     pub const GRIP_ALONG_HAND: f64 = 0.75;
 }
 
-/// Capsule radii for a 1.755 m worker [m], scaled by stature (ASSUMPTIONS, for clearance only).
+/// Capsule radii for a 1.755 m worker \[m\], scaled by stature (ASSUMPTIONS, for clearance only).
 const RADIUS_TRUNK: f64 = 0.13;
 const RADIUS_UPPER_ARM: f64 = 0.045;
 const RADIUS_FOREARM: f64 = 0.038;
 const RADIUS_HAND: f64 = 0.03;
 const RADIUS_HEAD: f64 = 0.10;
 
-/// Range of motion [rad] (ASSUMPTIONS: typical active ranges, AAOS-style tables).
+/// Range of motion \[rad\] (ASSUMPTIONS: typical active ranges, AAOS-style tables).
 const LIMITS: [(&str, f64, f64); 10] = [
     ("lumbar_flexion", -0.35, 1.4),
     ("lumbar_lateral_bending", -0.5, 0.5),

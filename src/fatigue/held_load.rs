@@ -4,13 +4,13 @@ use super::ma::{CurvePoint, MaParams};
 use super::units::min_to_s;
 use serde::Serialize;
 
-/// Curve length when a load can be held indefinitely (recovery balances it) [min].
+/// Curve length when a load can be held indefinitely (recovery balances it) \[min\].
 pub const UNLIMITED_CURVE_MIN: f64 = 60.0;
 
 #[derive(Debug, Clone, Serialize)]
 pub struct HeldLoad {
     pub fmvc: f64,
-    /// Maximum endurance time [min]; null if the load can be held indefinitely.
+    /// Maximum endurance time \[min\]; null if the load can be held indefinitely.
     pub met_min: Option<f64>,
     /// Samples from 0 to the endurance time (or [`UNLIMITED_CURVE_MIN`]).
     pub curve: Vec<CurvePoint>,

@@ -42,7 +42,7 @@ impl Default for MaParams {
 pub struct MaState {
     /// Capacity c = F_cem / MVC, in (0, 1].
     pub capacity: f64,
-    /// Fatigue index U [min], ≥ 0 (paper Eq. 1, 6).
+    /// Fatigue index U \[min\], ≥ 0 (paper Eq. 1, 6).
     pub fatigue_u_min: f64,
 }
 
@@ -142,7 +142,7 @@ impl MaParams {
         state.capacity = c1;
     }
 
-    /// Time [s] for capacity to go from `c0` to `target` while holding `f`; `None` if it never
+    /// Time \[s\] for capacity to go from `c0` to `target` while holding `f`; `None` if it never
     /// gets there (recovery balances the load first, or `f == 0`). `Some(0)` if `c0 ≤ target`.
     pub fn time_to_capacity_s(&self, c0: f64, f: f64, target: f64) -> Option<f64> {
         if c0 <= target {
@@ -160,7 +160,7 @@ impl MaParams {
         Some(super::units::min_to_s(t_min))
     }
 
-    /// Time [s] until capacity falls to the held load `f` (the muscle group can no longer hold
+    /// Time \[s\] until capacity falls to the held load `f` (the muscle group can no longer hold
     /// it), starting from capacity `c0`; `None` if it never does or `f == 0`.
     pub fn time_to_exhaustion_s(&self, c0: f64, f: f64) -> Option<f64> {
         if f <= 0.0 {
@@ -169,7 +169,7 @@ impl MaParams {
         self.time_to_capacity_s(c0, f, f)
     }
 
-    /// Maximum endurance time [min] of a fresh muscle holding `f` (paper Eq. 8 when R = 0:
+    /// Maximum endurance time \[min\] of a fresh muscle holding `f` (paper Eq. 8 when R = 0:
     /// `MET = -ln f / (k f)`).
     ///
     /// ```
@@ -183,7 +183,7 @@ impl MaParams {
     }
 }
 
-/// Paper Eq. 8 on its own: `MET = -ln f / (k f)` [min], for `f` in (0, 1].
+/// Paper Eq. 8 on its own: `MET = -ln f / (k f)` \[min\], for `f` in (0, 1].
 pub fn met_min(f: f64, k_per_min: f64) -> f64 {
     -f.ln() / (k_per_min * f)
 }

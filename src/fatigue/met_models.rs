@@ -17,7 +17,7 @@ pub enum MetEquation {
 }
 
 impl MetEquation {
-    /// MET [min] at relative load `f`.
+    /// MET \[min\] at relative load `f`.
     pub fn met_min(&self, f: f64) -> f64 {
         match *self {
             MetEquation::Power { a, b, shift } => a * (f - shift).powf(-b),

@@ -27,9 +27,9 @@ pub trait FatigueModel {
     fn hold(&self, state: &mut Self::State, f: f64, dt_s: f64);
     /// Capacity in (0, 1].
     fn capacity(&self, state: &Self::State) -> f64;
-    /// Fatigue index U [min].
+    /// Fatigue index U \[min\].
     fn fatigue_u_min(&self, state: &Self::State) -> f64;
-    /// Endurance time [s] of a rested muscle group holding `f`; `None` if unlimited.
+    /// Endurance time \[s\] of a rested muscle group holding `f`; `None` if unlimited.
     fn endurance_time_s(&self, f: f64) -> Option<f64>;
 }
 

@@ -113,7 +113,7 @@ impl Region {
 }
 
 impl ThreeCompartment {
-    /// Largest RK4 sub-step [s].
+    /// Largest RK4 sub-step \[s\].
     pub const MAX_SUBSTEP_S: f64 = 0.02;
 
     /// Published parameters for a region, LD = LR = 10 s⁻¹.
@@ -190,7 +190,7 @@ impl ThreeCompartment {
         st.fatigue_u_min = if u.is_finite() { u } else { f64::MAX };
     }
 
-    /// Sustained-load endurance time [s] (closed form, neglecting the ~0.1 s rise of MA):
+    /// Sustained-load endurance time \[s\] (closed form, neglecting the ~0.1 s rise of MA):
     /// `ET = −ln(1 − R(1 − TL)/(F·TL)) / R`; `None` if the load can be held indefinitely.
     pub fn endurance_time_s(&self, f: f64) -> Option<f64> {
         if f <= 0.0 {

@@ -4,7 +4,7 @@
 //!
 //! Per half-joint h (parameters k_h, R_h; capacity c_h and index U_h now), the phases of a cycle
 //! load it with an average `f̄_h = ΔF_h / T` over the remaining horizon T, where
-//! `ΔF_h = base_h + f_h · w` is the normalised load-time [min] (`f_h` this phase's load, `w` the
+//! `ΔF_h = base_h + f_h · w` is the normalised load-time \[min\] (`f_h` this phase's load, `w` the
 //! minutes this phase is held over the horizon, `base_h` what the other phases and the rests
 //! add). The predicted index at the horizon end is the model's closed form for `f̄_h` held from
 //! `(c_h, U_h)` for T: with R = 0 it is exact for any load history
@@ -30,15 +30,15 @@ pub struct FatigueObjective {
     pub params: Vec<MaParams>,
     pub capacity: Vec<f64>,
     pub fatigue_u_min: Vec<f64>,
-    /// ΔF contributed by the other phases and rests over the horizon [min].
+    /// ΔF contributed by the other phases and rests over the horizon \[min\].
     pub base_min: Vec<f64>,
     /// Minutes this phase is held over the horizon.
     pub weight_min: f64,
-    /// The remaining horizon [min].
+    /// The remaining horizon \[min\].
     pub horizon_min: f64,
 }
 
-/// ε of the objective [min].
+/// ε of the objective \[min\].
 pub const EPSILON_U_MIN: f64 = 1e-3;
 
 impl FatigueObjective {
@@ -61,7 +61,7 @@ impl FatigueObjective {
         }
     }
 
-    /// U increment over the horizon for load-time `df` [min] with recovery (closed form).
+    /// U increment over the horizon for load-time `df` \[min\] with recovery (closed form).
     fn du_recovery(&self, h: usize, df: f64) -> f64 {
         let t_min = self.horizon_min.max(1e-9);
         let mut st = MaState {

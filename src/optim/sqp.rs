@@ -14,9 +14,9 @@ use nalgebra::Vector3;
 /// Optimiser settings (documented defaults).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SqpSettings {
-    /// Initial trust region per joint [rad].
+    /// Initial trust region per joint \[rad\].
     pub trust_region_rad: f64,
-    /// Stop when the step is below this [rad] ...
+    /// Stop when the step is below this \[rad\] ...
     pub step_tolerance_rad: f64,
     /// ... or after this many iterations.
     pub max_iterations: usize,
@@ -29,9 +29,9 @@ pub struct SqpSettings {
     pub step_weight: f64,
     /// Capacity slack: quadratic and linear weights.
     pub capacity_weight: f64,
-    /// Minimum clearance between body capsules and obstacles [m].
+    /// Minimum clearance between body capsules and obstacles \[m\].
     pub clearance_m: f64,
-    /// Obstacles closer than this enter the QP as constraints [m].
+    /// Obstacles closer than this enter the QP as constraints \[m\].
     pub clearance_horizon_m: f64,
     /// Collision rows reserved in the QP (the closest pairs are kept).
     pub max_collision_rows: usize,

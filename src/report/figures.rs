@@ -197,7 +197,7 @@ impl View {
 
 /// What a posture drawing shows, in world coordinates.
 pub struct Scene {
-    /// Capsules: (a, b, radius) [m].
+    /// Capsules: (a, b, radius) \[m\].
     pub capsules: Vec<(Vector3<f64>, Vector3<f64>, f64)>,
     /// Kinematic tree segments (parent frame origin → child frame origin).
     pub bones: Vec<(Vector3<f64>, Vector3<f64>)>,

@@ -65,7 +65,7 @@ pub struct WexlerLevel {
     pub fmvc: f64,
     /// Initial slope of capacity [1/min] (−k f).
     pub initial_slope_per_min: f64,
-    /// Time for capacity to halve [min].
+    /// Time for capacity to halve \[min\].
     pub half_capacity_min: f64,
 }
 
@@ -101,7 +101,7 @@ pub struct DynamicValidation {
     pub frey_law_avin: Vec<RegionAnchor>,
 }
 
-/// Frey-Law & Avin (2010), Ergonomics 53:109, power model `ET = b0 f^b1` [s].
+/// Frey-Law & Avin (2010), Ergonomics 53:109, power model `ET = b0 f^b1` \[s\].
 pub fn frey_law_avin_curve(region: Region) -> Option<(f64, f64)> {
     Some(match region {
         Region::General => (21.92, -1.98),
@@ -200,7 +200,7 @@ fn wexler(k_per_min: f64) -> WexlerValidation {
     }
 }
 
-/// Simulated 3CC endurance [s]: time until the target can no longer be met (capacity < f).
+/// Simulated 3CC endurance \[s\]: time until the target can no longer be met (capacity < f).
 fn simulate_3cc_endurance_s(m: &ThreeCompartment, f: f64) -> f64 {
     let mut s = ThreeCompartmentState::FRESH;
     let dt = 0.1;
