@@ -125,6 +125,9 @@ enum Command {
         no_adapt: bool,
         #[arg(long)]
         json: bool,
+        /// Also write a self-contained HTML report (the table, who cannot do the task and why).
+        #[arg(long)]
+        report: Option<PathBuf>,
         /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
         #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
         capacity_floor: f64,
@@ -569,6 +572,7 @@ fn run(cli: Cli) -> Result<()> {
             seed,
             no_adapt,
             json,
+            report,
             capacity_floor,
         } => {
             check_floor(capacity_floor)?;
@@ -611,6 +615,9 @@ fn run(cli: Cli) -> Result<()> {
                 posture_opt::sweep::SweepError::Task { .. } => bad(e.to_string()),
                 posture_opt::sweep::SweepError::Plan { .. } => anyhow!(e),
             })?;
+            if let Some(path) = report {
+                write_outputs(&[(path, html::sweep_report(&sw))])?;
+            }
             if json {
                 print_json(&sw)
             } else {

@@ -275,7 +275,8 @@ pub fn sweep(
     })
 }
 
-fn problem_text(p: &Problem) -> String {
+/// One line describing a problem: what, where and when.
+pub fn problem_text(p: &Problem) -> String {
     match p {
         Problem::Exhaustion {
             t_s,
@@ -309,12 +310,12 @@ pub fn sweep_table(s: &Sweep) -> String {
     let _ = writeln!(
         o,
         "{:<12} {:>6} {:>7} {:>6} {:>7} {:>9} {:>5} {:>9}  problems",
-        "worker", "sex", "stature", "mass", "str.pct", "total U", "minC", "rest/cyc"
+        "worker", "sex", "stature", "mass", "str.pct", "U [min]", "minC", "rest/cyc"
     );
     for w in &s.workers {
         let _ = writeln!(
             o,
-            "{:<12} {:>6} {:>6.3}m {:>4.0}kg {:>7.0} {:>7.2}m {:>5.2} {:>9}  {}",
+            "{:<12} {:>6} {:>6.3}m {:>4.0}kg {:>7.0} {:>9.2} {:>5.2} {:>9}  {}",
             w.label,
             match w.worker.sex {
                 Sex::Male => "male",

@@ -89,6 +89,30 @@ fn compare_report_has_the_table_and_every_layout() {
     assert_eq!(html.matches("<svg").count(), 2 * (2 + 2 * 6));
 }
 
+#[test]
+fn sweep_report_says_who_cannot_and_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let html = report(dir.path(), &["sweep", "tasks/shelf.yaml"]);
+    assert_self_contained(&html);
+    for label in [
+        "P5 woman",
+        "P50 woman",
+        "P95 woman",
+        "P5 man",
+        "P50 man",
+        "P95 man",
+    ] {
+        assert!(html.contains(&format!("<td>{label}</td>")), "{label}");
+    }
+    // As many "no:" cells as workers who cannot, each with its reason.
+    let (_, out, _) = run(&["sweep", "tasks/shelf.yaml", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let cannot = v["cannot_do"].as_u64().unwrap() as usize;
+    assert!(cannot > 0);
+    assert_eq!(html.matches("<span class=\"bad\">no: ").count(), cannot);
+    assert!(html.contains("exhausted at"));
+}
+
 fn chromium() -> Option<PathBuf> {
     for name in ["chromium", "chromium-browser", "google-chrome", "chrome"] {
         if let Ok(out) = Command::new("which").arg(name).output() {

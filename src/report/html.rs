@@ -355,3 +355,53 @@ pub fn compare_report(c: &Comparison, layouts: &[Layout]) -> Result<String, Repo
     }
     Ok(document("Layout comparison", &body))
 }
+
+/// The report of a population sweep: who cannot do the task, and where.
+pub fn sweep_report(s: &crate::sweep::Sweep) -> String {
+    let mut o = String::new();
+    let _ = write!(
+        o,
+        "<p>{} workers ({}), {} plans, capacity floor {:.2}: <span class=\"{}\">{} cannot do the task</span>.</p>",
+        s.workers.len(),
+        esc(&s.population),
+        if s.adaptive { "adaptive" } else { "baseline" },
+        s.capacity_floor,
+        if s.cannot_do > 0 { "bad" } else { "ok" },
+        s.cannot_do
+    );
+    o.push_str("<table><tr><th>worker</th><th>sex</th><th>stature [m]</th><th>mass [kg]</th><th>strength percentile</th><th>total U [min]</th><th>lowest capacity</th><th>worst RULA</th><th>rest needed per cycle</th><th>can do the task?</th></tr>");
+    for w in &s.workers {
+        let _ = write!(
+            o,
+            "<tr><td>{}</td><td>{}</td><td>{:.3}</td><td>{:.0}</td><td>{:.0}</td><td>{:.2}</td><td>{:.2} {}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&w.label),
+            match w.worker.sex {
+                crate::body::Sex::Male => "male",
+                crate::body::Sex::Female => "female",
+            },
+            w.worker.stature_m,
+            w.worker.mass_kg,
+            w.worker.strength_percentile,
+            w.total_u_min,
+            w.min_capacity,
+            esc(&w.min_capacity_half_joint),
+            w.rula_max.map_or("n/a".into(), |r| r.to_string()),
+            w.rest_needed_s
+                .map_or("rest cannot help".into(), |r| format!("{r:.1} s")),
+            if w.can_do {
+                "<span class=\"ok\">yes</span>".to_string()
+            } else {
+                format!(
+                    "<span class=\"bad\">no: {}</span>",
+                    w.problems
+                        .iter()
+                        .map(|p| esc(&crate::sweep::problem_text(p)))
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                )
+            }
+        );
+    }
+    o.push_str("</table><p class=\"meta\">A worker cannot do the task when a muscle group is exhausted, a target is out of reach (more than 1 cm) or a posture collides with an obstacle. Bodies are generated per worker; see the README for the population data and its assumptions.</p>");
+    document(&format!("Population sweep: {}", s.task), &o)
+}
