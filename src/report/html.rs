@@ -1,5 +1,5 @@
 //! The self-contained HTML reports of `plan --report`, `compare --report` and `sweep --report`:
-//! and fatigue curves, side and front views of every phase's posture with the obstacles, RULA
+//! summary, capacity and fatigue curves, side and front views of every phase's posture with the obstacles, RULA
 //! worksheets, work/rest advice and (for `compare`) the comparison table. One file, inline SVG
 //! and CSS, no scripts, no external resources.
 
