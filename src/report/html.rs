@@ -1,7 +1,7 @@
 //! The self-contained HTML reports of `plan --report`, `compare --report` and `sweep --report`:
-//! summary, capacity and fatigue curves, side and front views of every phase's posture with the obstacles, RULA
-//! worksheets, work/rest advice and (for `compare`) the comparison table. One file, inline SVG
-//! and CSS, no scripts, no external resources.
+//! summary, capacity and fatigue curves, side and front views of every phase's posture with the
+//! obstacles, RULA worksheets, work/rest advice, the comparison table (`compare`) and the
+//! population table (`sweep`). One file, inline SVG and CSS, no scripts, no external resources.
 
 use super::figures::{bounds, curve_svg, esc, posture_svg, scene, Curve, Scene, View};
 use crate::body::StaticsData;
