@@ -76,40 +76,22 @@ enum Command {
     Plan {
         /// Task file (YAML).
         task: PathBuf,
-        /// The fatigue-unaware baseline: fresh capacities, solved once, held all task.
-        #[arg(long)]
-        no_adapt: bool,
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        assess: AssessArgs,
         /// Also write the timeline as CSV.
         #[arg(long)]
         csv: Option<PathBuf>,
         /// Also write the plan as a recording for `evaluate` (t_s, joints, force_*_n).
         #[arg(long)]
         recording: Option<PathBuf>,
-        /// Also write a self-contained HTML report (curves, postures, RULA, rest).
-        #[arg(long)]
-        report: Option<PathBuf>,
-        /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
-        #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
-        capacity_floor: f64,
     },
     /// Compare workstation layouts (task files): side by side, ranked.
     Compare {
         /// Two or more task files (YAML), one per layout.
         #[arg(required = true, num_args = 2..)]
         tasks: Vec<PathBuf>,
-        /// Plan every layout with the fatigue-unaware baseline instead.
-        #[arg(long)]
-        no_adapt: bool,
-        #[arg(long)]
-        json: bool,
-        /// Also write a self-contained HTML report.
-        #[arg(long)]
-        report: Option<PathBuf>,
-        /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
-        #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
-        capacity_floor: f64,
+        #[command(flatten)]
+        assess: AssessArgs,
     },
     /// Plan one task for a population of workers: who cannot do it, and where.
     Sweep {
@@ -121,16 +103,8 @@ enum Command {
         /// Seed of the sample.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        #[arg(long)]
-        no_adapt: bool,
-        #[arg(long)]
-        json: bool,
-        /// Also write a self-contained HTML report (the table, who cannot do the task and why).
-        #[arg(long)]
-        report: Option<PathBuf>,
-        /// Capacity floor for the work/rest advice (fraction of MVC, 0-1).
-        #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR)]
-        capacity_floor: f64,
+        #[command(flatten)]
+        assess: AssessArgs,
     },
     /// Evaluate recorded work (joint angles and hand load over time) into a fatigue timeline.
     Evaluate {
@@ -180,6 +154,30 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+}
+
+/// Options shared by `plan`, `compare` and `sweep`.
+#[derive(clap::Args)]
+struct AssessArgs {
+    /// The fatigue-unaware baseline: fresh capacities, solved once, held all task.
+    #[arg(long)]
+    no_adapt: bool,
+    /// Write the result as one JSON document on standard output.
+    #[arg(long)]
+    json: bool,
+    /// Also write a self-contained HTML report.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Capacity floor for the work/rest advice (fraction of MVC, strictly between 0 and 1).
+    #[arg(long, default_value_t = posture_opt::rest::DEFAULT_CAPACITY_FLOOR, value_parser = parse_floor)]
+    capacity_floor: f64,
+}
+
+fn parse_floor(s: &str) -> std::result::Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(f) if f.is_finite() && f > 0.0 && f < 1.0 => Ok(f),
+        _ => Err(format!("must be a number between 0 and 1, got '{s}'")),
+    }
 }
 
 #[derive(Subcommand)]
@@ -310,16 +308,6 @@ fn parse_q(s: &str) -> Result<Vec<(String, f64)>> {
             Ok((name.trim().to_string(), v))
         })
         .collect()
-}
-
-fn check_floor(f: f64) -> Result<()> {
-    if f.is_finite() && f > 0.0 && f < 1.0 {
-        Ok(())
-    } else {
-        Err(bad(format!(
-            "--capacity-floor must be between 0 and 1, got {f}"
-        )))
-    }
 }
 
 /// Writes every output atomically, only after all of them were produced.
@@ -484,14 +472,16 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Plan {
             task,
-            no_adapt,
-            json,
+            assess:
+                AssessArgs {
+                    no_adapt,
+                    json,
+                    report,
+                    capacity_floor,
+                },
             csv,
             recording,
-            report,
-            capacity_floor,
         } => {
-            check_floor(capacity_floor)?;
             let t = posture_opt::task::Task::from_file(&task).map_err(|e| bad(e.to_string()))?;
             let (plan, _baseline) = posture_opt::plan::plan_with_baseline(&t, !no_adapt)?;
             let rest = posture_opt::rest::rest_advice(&t, &plan, capacity_floor);
@@ -527,12 +517,14 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Compare {
             tasks,
-            no_adapt,
-            json,
-            report,
-            capacity_floor,
+            assess:
+                AssessArgs {
+                    no_adapt,
+                    json,
+                    report,
+                    capacity_floor,
+                },
         } => {
-            check_floor(capacity_floor)?;
             let files: Vec<String> = tasks.iter().map(|p| p.display().to_string()).collect();
             let loaded = tasks
                 .iter()
@@ -570,12 +562,14 @@ fn run(cli: Cli) -> Result<()> {
             task,
             sample,
             seed,
-            no_adapt,
-            json,
-            report,
-            capacity_floor,
+            assess:
+                AssessArgs {
+                    no_adapt,
+                    json,
+                    report,
+                    capacity_floor,
+                },
         } => {
-            check_floor(capacity_floor)?;
             let name = task.display().to_string();
             let text = std::fs::read_to_string(&task)
                 .map_err(|e| bad(format!("{name}: cannot read: {e}")))?;

@@ -242,10 +242,7 @@ impl<'t> Planner<'t> {
         let rep: Vec<usize> = (0..t.phases.len())
             .map(|p| {
                 (0..=p)
-                    .find(|&o| {
-                        t.phases[o].target_m == t.phases[p].target_m
-                            && t.phases[o].hand_force_n == t.phases[p].hand_force_n
-                    })
+                    .find(|&o| t.phases[o].same_work(&t.phases[p]))
                     .unwrap_or(p)
             })
             .collect();
@@ -478,11 +475,7 @@ impl<'t> Planner<'t> {
                 loaded.truncate(3);
                 let sol = ctx.sols[p];
                 let ph = &t.phases[p];
-                let repeats = t
-                    .phases
-                    .iter()
-                    .filter(|o| o.target_m == ph.target_m && o.hand_force_n == ph.hand_force_n)
-                    .count() as f64;
+                let repeats = t.phases.iter().filter(|o| o.same_work(ph)).count() as f64;
                 let activity = RulaActivity {
                     load_kg: ph.hand_force_n.norm() / t.gravity_m_s2.norm().max(1e-9),
                     held_s: ph.duration_s,

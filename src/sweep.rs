@@ -317,10 +317,7 @@ pub fn sweep_table(s: &Sweep) -> String {
             o,
             "{:<12} {:>6} {:>6.3}m {:>4.0}kg {:>7.0} {:>9.2} {:>5.2} {:>9}  {}",
             w.label,
-            match w.worker.sex {
-                Sex::Male => "male",
-                Sex::Female => "female",
-            },
+            w.worker.sex.name(),
             w.worker.stature_m,
             w.worker.mass_kg,
             w.worker.strength_percentile,

@@ -144,6 +144,13 @@ pub struct Phase {
     pub duration_s: f64,
 }
 
+impl Phase {
+    /// Same hand target and hand force: the same work, hence the same optimal posture.
+    pub fn same_work(&self, other: &Phase) -> bool {
+        self.target_m == other.target_m && self.hand_force_n == other.hand_force_n
+    }
+}
+
 /// A validated task.
 #[derive(Debug)]
 pub struct Task {

@@ -27,6 +27,16 @@ pub enum Sex {
     Female,
 }
 
+impl Sex {
+    /// "male" or "female", as in task files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sex::Male => "male",
+            Sex::Female => "female",
+        }
+    }
+}
+
 /// A worker description.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -178,20 +178,19 @@ fn phases_html(o: &mut String, l: &Layout) -> Result<(), ReportError> {
     let refs: Vec<&Scene> = scenes.iter().collect();
     let b_side = bounds(&refs, &t.workstation, View::Side);
     let b_front = bounds(&refs, &t.workstation, View::Front);
-    // One scale for both views: metres per pixel from the larger vertical extent.
-    let px_per_m = 300.0 / ((b_side.1 .1 - b_side.0 .1).max(b_front.1 .1 - b_front.0 .1));
+    // One scale for every view: at most 300 px tall and 480 px wide.
+    let extent = |b: ((f64, f64), (f64, f64)), axis: usize| match axis {
+        0 => b.1 .0 - b.0 .0,
+        _ => b.1 .1 - b.0 .1,
+    };
+    let px_per_m = (300.0 / extent(b_side, 1).max(extent(b_front, 1)))
+        .min(480.0 / extent(b_side, 0).max(extent(b_front, 0)));
     for (ph, sc) in l.plan.summary.phases.iter().zip(&scenes) {
         let _ = write!(o, "<div class=\"phase\"><h4>{}</h4>", esc(&ph.phase));
         o.push_str("<div class=\"views\">");
         for (view, b) in [(View::Side, b_side), (View::Front, b_front)] {
             let w = (b.1 .0 - b.0 .0) * px_per_m;
-            o.push_str(&posture_svg(
-                sc,
-                &t.workstation,
-                view,
-                b,
-                w.clamp(120.0, 480.0),
-            ));
+            o.push_str(&posture_svg(sc, &t.workstation, view, b, w));
         }
         o.push_str("</div><p>");
         let _ = write!(
@@ -375,10 +374,7 @@ pub fn sweep_report(s: &crate::sweep::Sweep) -> String {
             o,
             "<tr><td>{}</td><td>{}</td><td>{:.3}</td><td>{:.0}</td><td>{:.0}</td><td>{:.2}</td><td>{:.2} {}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             esc(&w.label),
-            match w.worker.sex {
-                crate::body::Sex::Male => "male",
-                crate::body::Sex::Female => "female",
-            },
+            w.worker.sex.name(),
             w.worker.stature_m,
             w.worker.mass_kg,
             w.worker.strength_percentile,
