@@ -388,7 +388,7 @@ impl EvalSetup {
         };
         let robot = urdf.display().to_string();
         let half_joints = crate::body::resolve_half_joints(&model, &table, worker, &robot)?;
-        let params = vec![MaParams::new(params.k_per_min, params.r_per_min)?; half_joints.len()];
+        let params = vec![MaParams::with_recovery(params.k_per_min, params.recovery)?; half_joints.len()];
         Ok(EvalSetup {
             robot,
             model,

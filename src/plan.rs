@@ -506,7 +506,7 @@ impl<'t> Planner<'t> {
         if self.warm_start.is_none() {
             self.warm_start = Some(ctx.q_phase.clone());
         }
-        let any_recovery = t.fatigue.iter().any(|p| p.r_per_min > 0.0);
+        let any_recovery = t.fatigue.iter().any(|p| p.r_at(0.0) > 0.0);
         Ok(Plan {
             task: t.name.clone(),
             robot: t.robot.clone(),
@@ -528,7 +528,7 @@ impl<'t> Planner<'t> {
                     region: h.region.clone(),
                     mvc_nm: h.mvc_nm,
                     k_per_min: p.k_per_min,
-                    recovery_per_min: p.r_per_min,
+                    recovery_per_min: p.r_at(0.0),
                     source: h.source.clone(),
                 })
                 .collect(),

@@ -194,7 +194,7 @@ pub fn rest_advice(task: &Task, plan: &Plan, floor: f64) -> RestAdvice {
             let feasible =
                 |r: f64, st: &mut [MaState]| replay(task, &loads, &f_rest, r, floor, st).0 >= 0.0;
             let r_max = 10.0 * work_s;
-            let any_recovery = task.fatigue.iter().any(|p| p.r_per_min > 0.0);
+            let any_recovery = task.fatigue.iter().any(|p| p.r_at(0.0) > 0.0);
             let (rest, note) = if feasible(0.0, &mut state) {
                 (Some(0.0), "no rest needed to stay above the floor".to_string())
             } else if !feasible(r_max, &mut state) {

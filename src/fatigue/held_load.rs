@@ -48,7 +48,7 @@ pub fn met_report(p: &MaParams, levels: &[f64], points: usize) -> MetReport {
         .collect();
     MetReport {
         k_per_min: p.k_per_min,
-        recovery_per_min: p.r_per_min,
+        recovery_per_min: p.r_at(0.0),
         levels,
     }
 }

@@ -1,30 +1,111 @@
-//! The dynamic muscle fatigue model of Ma, Chablat, Bennis & Zhang (2009), normalised, with an
-//! optional recovery term.
+//! The dynamic muscle fatigue model of Ma, Chablat, Bennis & Zhang (2009), normalised, with a
+//! load-dependent recovery term.
 //!
 //! Per muscle group, with `c = F_cem / MVC` (capacity) and `f = F_load / MVC` (relative load):
 //!
 //! * paper Eq. 2: `dc/dt = -k f c`; Eq. 1: `dU/dt = f / c²` (U in minutes);
-//! * recovery extension (not in the 2009 paper, documented assumption):
-//!   `dc/dt = -k f c + R (1 - c)`. With `R = 0` this is the paper exactly.
+//! * with recovery: `dc/dt = -k f c + R(f) (1 - c)`, where the recovery rate `R(f)` depends on
+//!   the load held ([`Recovery`]). `R ≡ 0` is the paper exactly.
 //!
-//! For a load held constant over a step, both equations have closed forms, so a step of any length
-//! is one exact O(1) update ([`MaParams::hold`]); nothing here integrates with small time steps.
-//! With `λ = k f + R` and `c∞ = R / λ`:
+//! For a load held constant over a step, `R(f)` is constant too, so both equations have closed
+//! forms and a step of any length is one exact O(1) update ([`MaParams::hold`]); nothing here
+//! integrates with small time steps. With `λ = k f + R(f)`, `a = c∞ = R(f) / λ`, `b = c0 − a`:
 //!
-//! * `c(t) = c∞ + (c0 - c∞) e^{-λ t}`;
-//! * `U(t) - U(0) = ∫ f / c(τ)² dτ`, which with `a = c∞`, `b = c0 - c∞`, `x = e^{λt}` is
-//!   `f / (λ a²) · [ln((a x + b) / c0) + b / (a x + b) - b / c0]`, evaluated in a form that stays
-//!   accurate as `a → 0` (where it becomes paper Eq. 6, `(1/c1² - 1/c0²) / (2k)`).
+//! * `c(t) = a + b e^{−λt}`;
+//! * `U(t) − U(0) = ∫ f / c(τ)² dτ = f/(λa²) · ln(1 + w) − f/(λa) · (1/c(t) − 1/c0)` with
+//!   `w = (a/c0)(e^{λt} − 1)`. For `λt ≤ 30` it is evaluated as
+//!   `f/λ · y · [1/(c0 (1 + w)) + g(w) y]`, `y = (e^{λt} − 1)/c0`,
+//!   `g(w) = (ln(1+w) − w/(1+w))/w²` (series for small `w`), which stays exact as `a → 0` (where
+//!   it becomes paper Eq. 6, `(1/c1² − 1/c0²)/(2k)`); beyond, `ln(1 + w)` is taken as
+//!   `λt + ln(a/c0) + ln(1 + (b/a) e^{−λt})`, so holds of days neither overflow nor lose the
+//!   linear growth `f t / c∞²` of U at equilibrium;
+//! * without recovery, `c(t) = c0 e^{−kft}`, `U(t) − U(0) = (e^{2kft} − 1)/(2k c0²)`.
+//!
+//! Where U exceeds what a double can hold (a muscle group driven far past exhaustion), the update
+//! says so ([`MaParams::hold`] returns `false`) instead of returning a wrong number.
 
 use super::units::s_to_min;
+use serde::Serialize;
+
+/// Largest documented fatigue rate k \[1/min\] (the literature's fitted k lie within 0.1–5).
+pub const K_MAX_PER_MIN: f64 = 20.0;
+/// Smallest documented fatigue rate k \[1/min\].
+pub const K_MIN_PER_MIN: f64 = 0.01;
+/// Largest documented recovery rate \[1/min\] (a half-time of about 2 s).
+pub const R_MAX_PER_MIN: f64 = 20.0;
+
+/// How capacity recovers: the rate `R(f)` \[1/min\] in `dc/dt = −k f c + R(f)(1 − c)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "form", rename_all = "snake_case")]
+pub enum Recovery {
+    /// No recovery: Ma et al. (2009) exactly.
+    None,
+    /// A constant rate, acting under load as at rest (the form of earlier task files'
+    /// `recovery_per_min`; it lets every load below `f*` be held forever).
+    Constant { r_per_min: f64 },
+    /// Perfusion-limited recovery: the rate falls with the load held, as muscle blood flow does
+    /// when intramuscular pressure rises, `R(f) = R_rest · x²(3 − 2x)` with `x = 1 − f/f_lim`
+    /// below the limit load `f_lim`, and 0 at and above it (C¹ in f at both ends). At rest
+    /// (`f = 0`) the rate is `R_rest`; from `f_lim` up the model is the paper's exactly.
+    Perfusion { rest_per_min: f64, limit_fmvc: f64 },
+}
+
+impl Recovery {
+    /// The recovery rate \[1/min\] while holding relative load `f ≥ 0`.
+    #[inline]
+    pub fn rate_per_min(&self, f: f64) -> f64 {
+        match *self {
+            Recovery::None => 0.0,
+            Recovery::Constant { r_per_min } => r_per_min,
+            Recovery::Perfusion {
+                rest_per_min,
+                limit_fmvc,
+            } => {
+                let x = 1.0 - f / limit_fmvc;
+                if x > 0.0 {
+                    rest_per_min * x * x * (3.0 - 2.0 * x)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// The rate at rest (`f = 0`) \[1/min\].
+    pub fn rest_rate_per_min(&self) -> f64 {
+        self.rate_per_min(0.0)
+    }
+
+    /// Checks the parameters against their documented ranges.
+    pub fn validate(&self) -> Result<(), FatigueError> {
+        let rate_ok = |r: f64| r.is_finite() && (0.0..=R_MAX_PER_MIN).contains(&r);
+        match *self {
+            Recovery::None => Ok(()),
+            Recovery::Constant { r_per_min } if rate_ok(r_per_min) => Ok(()),
+            Recovery::Constant { r_per_min } => Err(FatigueError::BadR(r_per_min)),
+            Recovery::Perfusion {
+                rest_per_min,
+                limit_fmvc,
+            } => {
+                if !rate_ok(rest_per_min) {
+                    Err(FatigueError::BadR(rest_per_min))
+                } else if !(limit_fmvc.is_finite() && (0.01..=1.0).contains(&limit_fmvc)) {
+                    Err(FatigueError::BadLimit(limit_fmvc))
+                } else {
+                    Ok(())
+                }
+            }
+        }
+    }
+}
 
 /// Parameters of one muscle group (half-joint) under the Ma et al. model.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MaParams {
     /// Fatigue rate k [1/min]; the paper uses k = 1 (Table 1).
     pub k_per_min: f64,
-    /// Recovery rate R [1/min]; 0 reproduces the paper.
-    pub r_per_min: f64,
+    /// Recovery `R(f)`.
+    pub recovery: Recovery,
 }
 
 impl Default for MaParams {
@@ -32,13 +113,13 @@ impl Default for MaParams {
     fn default() -> Self {
         MaParams {
             k_per_min: 1.0,
-            r_per_min: 0.0,
+            recovery: Recovery::None,
         }
     }
 }
 
 /// Capacity and fatigue index of one muscle group.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MaState {
     /// Capacity c = F_cem / MVC, in (0, 1].
     pub capacity: f64,
@@ -63,10 +144,12 @@ impl Default for MaState {
 /// Why a parameter set or a load was refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FatigueError {
-    #[error("fatigue rate k must be finite and > 0 (1/min), got {0}")]
+    #[error("fatigue rate k must be finite and within {K_MIN_PER_MIN}..{K_MAX_PER_MIN} 1/min, got {0}")]
     BadK(f64),
-    #[error("recovery rate R must be finite and >= 0 (1/min), got {0}")]
+    #[error("recovery rate must be finite and within 0..{R_MAX_PER_MIN} 1/min, got {0}")]
     BadR(f64),
+    #[error("recovery limit load f_lim must be within 0.01..1 (fraction of MVC), got {0}")]
+    BadLimit(f64),
     #[error("relative load f = F_load/MVC must be finite and in [0, 1] for {what}, got {value}")]
     BadLoad { what: &'static str, value: f64 },
     #[error("{what} must be finite and >= 0, got {value}")]
@@ -76,6 +159,9 @@ pub enum FatigueError {
 /// Smallest capacity the state keeps, so that c stays in (0, 1] even after absurdly long holds.
 const C_FLOOR: f64 = f64::MIN_POSITIVE;
 
+/// Beyond this `λt` the equilibrium form of U is used (e^{−30} ≈ 1e−13).
+const LAMBDA_T_SWITCH: f64 = 30.0;
+
 /// `(ln(1+w) - w/(1+w)) / w²`, accurate for small |w| (series) and large w.
 #[inline]
 fn g_of_w(w: f64) -> f64 {
@@ -83,26 +169,84 @@ fn g_of_w(w: f64) -> f64 {
         // ln(1+w) - w/(1+w) = w²/2 - 2w³/3 + 3w⁴/4 - 4w⁵/5 + ...
         0.5 + w * (-2.0 / 3.0 + w * (0.75 - w * 0.8))
     } else {
-        ((w).ln_1p() - w / (1.0 + w)) / (w * w)
+        (w.ln_1p() - w / (1.0 + w)) / (w * w)
+    }
+}
+
+/// Exact capacity and U increment of holding `f` for `t_min` from capacity `c0`, with fatigue
+/// rate `k` and recovery rate `r` (both per minute, `r` the rate for this load).
+/// Returns `(c1, ΔU)`; ΔU may be infinite when it exceeds a double.
+#[inline]
+pub fn step_exact(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> (f64, f64) {
+    let lambda = k * f + r;
+    if lambda <= 0.0 || t_min <= 0.0 {
+        return (c0, 0.0);
+    }
+    if r == 0.0 {
+        let x = k * f * t_min;
+        let c1 = (c0 * (-x).exp()).max(C_FLOOR);
+        let du = (2.0 * x).exp_m1() / (2.0 * k * c0 * c0);
+        return (c1, du);
+    }
+    let a = r / lambda;
+    let b = c0 - a;
+    let lt = lambda * t_min;
+    if lt <= LAMBDA_T_SWITCH {
+        // x1 - 1 = e^{λt} - 1 without cancellation; e^{-λt} = 1 / x1 reuses it.
+        let xm1 = lt.exp_m1();
+        let c1 = (a + b / (1.0 + xm1)).clamp(C_FLOOR, 1.0);
+        if f == 0.0 {
+            return (c1, 0.0);
+        }
+        let inv_c0 = 1.0 / c0;
+        let y = xm1 * inv_c0;
+        let w = a * y;
+        let du = f / lambda * y * (inv_c0 / (1.0 + w) + g_of_w(w) * y);
+        (c1, du)
+    } else {
+        let s = (-lt).exp();
+        let c1 = (a + b * s).clamp(C_FLOOR, 1.0);
+        if f == 0.0 {
+            return (c1, 0.0);
+        }
+        let ln_1p_w = lt + (a / c0).ln() + (b * s / a).ln_1p();
+        let du = f / (lambda * a * a) * ln_1p_w - f * b * (1.0 - s) / (lambda * a * c0 * c1);
+        (c1, du.max(0.0))
     }
 }
 
 impl MaParams {
-    /// Checked constructor.
+    /// Checked constructor with a constant recovery rate `r_per_min` (0: the paper's model).
     pub fn new(k_per_min: f64, r_per_min: f64) -> Result<Self, FatigueError> {
-        if !(k_per_min.is_finite() && k_per_min > 0.0) {
+        let recovery = if r_per_min == 0.0 {
+            Recovery::None
+        } else {
+            Recovery::Constant { r_per_min }
+        };
+        Self::with_recovery(k_per_min, recovery)
+    }
+
+    /// Checked constructor with any recovery form.
+    pub fn with_recovery(k_per_min: f64, recovery: Recovery) -> Result<Self, FatigueError> {
+        if !(k_per_min.is_finite() && (K_MIN_PER_MIN..=K_MAX_PER_MIN).contains(&k_per_min)) {
             return Err(FatigueError::BadK(k_per_min));
         }
-        if !(r_per_min.is_finite() && r_per_min >= 0.0) {
-            return Err(FatigueError::BadR(r_per_min));
-        }
+        recovery.validate()?;
         Ok(MaParams {
             k_per_min,
-            r_per_min,
+            recovery,
         })
     }
 
+    /// Recovery rate \[1/min\] while holding `f`.
+    #[inline]
+    pub fn r_at(&self, f: f64) -> f64 {
+        self.recovery.rate_per_min(f)
+    }
+
     /// Holds relative load `f ≥ 0` for `dt_s` seconds: exact update of capacity and U.
+    /// Returns `false` when U no longer fits in a double (U is then left at `f64::MAX`): the
+    /// group was held far past exhaustion and its index has no meaningful value.
     ///
     /// Inputs are trusted (checked at the boundary): `f` finite and ≥ 0, `dt_s` finite and ≥ 0.
     ///
@@ -110,36 +254,29 @@ impl MaParams {
     /// use posture_opt::fatigue::{MaParams, MaState};
     /// let p = MaParams::default(); // k = 1/min, no recovery
     /// let mut s = MaState::FRESH;
-    /// p.hold(&mut s, 0.5, 60.0); // 50 %MVC for one minute
+    /// assert!(p.hold(&mut s, 0.5, 60.0)); // 50 %MVC for one minute
     /// assert!((s.capacity - (-0.5f64).exp()).abs() < 1e-15);
     /// // Eq. 6: U = (e^{2kF} - 1) / 2k with F = 0.5 min
     /// assert!((s.fatigue_u_min - (1f64.exp() - 1.0) / 2.0).abs() < 1e-14);
     /// ```
     #[inline]
-    pub fn hold(&self, state: &mut MaState, f: f64, dt_s: f64) {
-        let t_min = s_to_min(dt_s);
-        let k = self.k_per_min;
-        let r = self.r_per_min;
-        let c0 = state.capacity;
-        let lambda = k * f + r;
-        if lambda <= 0.0 || t_min <= 0.0 {
-            return;
-        }
-        let inv_lambda = 1.0 / lambda;
-        let c_inf = r * inv_lambda;
-        // x1 - 1 = e^{λt} - 1 without cancellation; e^{-λt} = 1 / x1 reuses it.
-        let xm1 = (lambda * t_min).exp_m1();
-        let decay = 1.0 / (1.0 + xm1);
-        let c1 = (c_inf + (c0 - c_inf) * decay).clamp(C_FLOOR, 1.0);
-        if f > 0.0 {
-            let inv_c0 = 1.0 / c0;
-            let y = xm1 * inv_c0;
-            let w = c_inf * y;
-            let du = f * inv_lambda * y * (inv_c0 / (1.0 + w) + g_of_w(w) * y);
-            let u = state.fatigue_u_min + du;
-            state.fatigue_u_min = if u.is_finite() { u } else { f64::MAX };
-        }
+    pub fn hold(&self, state: &mut MaState, f: f64, dt_s: f64) -> bool {
+        let (c1, du) = step_exact(
+            self.k_per_min,
+            self.r_at(f),
+            f,
+            state.capacity,
+            s_to_min(dt_s),
+        );
         state.capacity = c1;
+        let u = state.fatigue_u_min + du;
+        if u.is_finite() {
+            state.fatigue_u_min = u;
+            true
+        } else {
+            state.fatigue_u_min = f64::MAX;
+            false
+        }
     }
 
     /// Time \[s\] for capacity to go from `c0` to `target` while holding `f`; `None` if it never
@@ -151,8 +288,9 @@ impl MaParams {
         if f <= 0.0 {
             return None;
         }
-        let lambda = self.k_per_min * f + self.r_per_min;
-        let c_inf = self.r_per_min / lambda;
+        let r = self.r_at(f);
+        let lambda = self.k_per_min * f + r;
+        let c_inf = r / lambda;
         if c_inf >= target {
             return None;
         }
@@ -169,8 +307,8 @@ impl MaParams {
         self.time_to_capacity_s(c0, f, f)
     }
 
-    /// Maximum endurance time \[min\] of a fresh muscle holding `f` (paper Eq. 8 when R = 0:
-    /// `MET = -ln f / (k f)`).
+    /// Maximum endurance time \[min\] of a fresh muscle holding `f` (paper Eq. 8 without
+    /// recovery: `MET = -ln f / (k f)`).
     ///
     /// ```
     /// use posture_opt::fatigue::MaParams;
@@ -180,6 +318,38 @@ impl MaParams {
     pub fn met_min(&self, f: f64) -> Option<f64> {
         self.time_to_exhaustion_s(1.0, f)
             .map(super::units::s_to_min)
+    }
+
+    /// The largest load a rested group can hold forever: the `f*` where recovery's equilibrium
+    /// `c∞ = R(f)/(k f + R(f))` equals the load (bisection on the exact condition
+    /// `R(f)(1 − f) = k f²`). 0 without recovery.
+    ///
+    /// ```
+    /// use posture_opt::fatigue::MaParams;
+    /// // constant R: f* = (−R + √(R² + 4kR)) / 2k
+    /// let p = MaParams::new(1.0, 0.3).unwrap();
+    /// let closed = (-0.3 + (0.09f64 + 1.2).sqrt()) / 2.0;
+    /// assert!((p.sustainable_load() - closed).abs() < 1e-12);
+    /// ```
+    pub fn sustainable_load(&self) -> f64 {
+        let margin = |f: f64| self.r_at(f) * (1.0 - f) - self.k_per_min * f * f;
+        if self.r_at(0.0) == 0.0 {
+            return 0.0;
+        }
+        // margin(0) = R(0) > 0, margin(1) = −k < 0, and margin decreases in f.
+        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if margin(mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-15 {
+                break;
+            }
+        }
+        0.5 * (lo + hi)
     }
 }
 
@@ -198,7 +368,8 @@ pub struct CurvePoint {
 
 impl MaParams {
     /// Capacity and U of a fresh muscle group holding `f`, sampled at `n + 1` evenly spaced
-    /// instants over `[0, t_end_s]` (each sample exact, chained step by step).
+    /// instants over `[0, t_end_s]` (each sample exact, chained step by step). Samples stop
+    /// early where U would no longer fit in a double.
     pub fn hold_curve(&self, f: f64, t_end_s: f64, n: usize) -> Vec<CurvePoint> {
         let n = n.max(1);
         let dt = t_end_s / n as f64;
@@ -210,7 +381,9 @@ impl MaParams {
             fatigue_u_min: s.fatigue_u_min,
         });
         for i in 1..=n {
-            self.hold(&mut s, f, dt);
+            if !self.hold(&mut s, f, dt) {
+                break;
+            }
             out.push(CurvePoint {
                 t_s: dt * i as f64,
                 capacity: s.capacity,
@@ -222,10 +395,13 @@ impl MaParams {
 }
 
 /// Holds `loads[i]` on muscle group `i` (parameters `params[i]`, state `states[i]`) for `dt_s`.
-/// The three slices must be equally long (shorter ones bound the loop).
+/// The three slices must be equally long (shorter ones bound the loop). Returns `false` if any
+/// group's U overflowed (see [`MaParams::hold`]).
 #[inline]
-pub fn hold_all(params: &[MaParams], states: &mut [MaState], loads: &[f64], dt_s: f64) {
+pub fn hold_all(params: &[MaParams], states: &mut [MaState], loads: &[f64], dt_s: f64) -> bool {
+    let mut ok = true;
     for ((p, s), &f) in params.iter().zip(states.iter_mut()).zip(loads) {
-        p.hold(s, f, dt_s);
+        ok &= p.hold(s, f, dt_s);
     }
+    ok
 }

@@ -7,15 +7,17 @@
 //! * time in seconds (`dt_s`); rates quoted per minute carry `_per_min` and are converted in
 //!   [`units`] only.
 
+pub mod dual;
 pub mod held_load;
 pub mod ma;
 pub mod met_models;
+pub mod schedule;
 pub mod stats;
 pub mod three_compartment;
 pub mod units;
 
 pub use held_load::{met_report, HeldLoad, MetReport};
-pub use ma::{hold_all, met_min, CurvePoint, FatigueError, MaParams, MaState};
+pub use ma::{hold_all, met_min, step_exact, CurvePoint, FatigueError, MaParams, MaState, Recovery};
 pub use three_compartment::{Region, ThreeCompartment, ThreeCompartmentState};
 
 /// A fatigue model behind one interface: hold a relative load for a while, read capacity and U.
@@ -23,8 +25,9 @@ pub trait FatigueModel {
     type State: Copy;
     /// State of a rested muscle group.
     fn fresh(&self) -> Self::State;
-    /// Holds relative load `f` for `dt_s` seconds.
-    fn hold(&self, state: &mut Self::State, f: f64, dt_s: f64);
+    /// Holds relative load `f` for `dt_s` seconds; `false` if the state no longer fits in doubles
+    /// (a group held far past exhaustion).
+    fn hold(&self, state: &mut Self::State, f: f64, dt_s: f64) -> bool;
     /// Capacity in (0, 1].
     fn capacity(&self, state: &Self::State) -> f64;
     /// Fatigue index U \[min\].
@@ -38,7 +41,7 @@ impl FatigueModel for MaParams {
     fn fresh(&self) -> MaState {
         MaState::FRESH
     }
-    fn hold(&self, state: &mut MaState, f: f64, dt_s: f64) {
+    fn hold(&self, state: &mut MaState, f: f64, dt_s: f64) -> bool {
         MaParams::hold(self, state, f, dt_s)
     }
     fn capacity(&self, state: &MaState) -> f64 {
@@ -57,8 +60,9 @@ impl FatigueModel for ThreeCompartment {
     fn fresh(&self) -> ThreeCompartmentState {
         ThreeCompartmentState::FRESH
     }
-    fn hold(&self, state: &mut ThreeCompartmentState, f: f64, dt_s: f64) {
-        ThreeCompartment::hold(self, state, f, dt_s)
+    fn hold(&self, state: &mut ThreeCompartmentState, f: f64, dt_s: f64) -> bool {
+        ThreeCompartment::hold(self, state, f, dt_s);
+        state.fatigue_u_min.is_finite()
     }
     fn capacity(&self, state: &ThreeCompartmentState) -> f64 {
         state.capacity()

@@ -48,7 +48,7 @@ impl FatigueObjective {
         let c = self.capacity[h];
         let u0 = self.fatigue_u_min[h].max(0.0);
         let df = self.base_min[h] + f * self.weight_min;
-        if p.r_per_min == 0.0 {
+        if p.recovery == crate::fatigue::Recovery::None {
             let z = 2.0 * p.k_per_min * df;
             let log_scale = -(2.0 * p.k_per_min * c * c).ln();
             if z < 600.0 {
@@ -89,7 +89,7 @@ impl FatigueObjective {
         let w = self.weight_min;
         for h in 0..n {
             let p = &self.params[h];
-            if p.r_per_min == 0.0 {
+            if p.recovery == crate::fatigue::Recovery::None {
                 // U' = e^{z}/c² · w, U'' = 2k U' · w (z = 2kΔF)
                 let z = 2.0 * p.k_per_min * (self.base_min[h] + f[h] * w);
                 let d = (z - 2.0 * self.capacity[h].ln() - log_s).exp() * w;
