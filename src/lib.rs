@@ -58,18 +58,11 @@
 //! ```
 
 pub mod body;
-pub mod compare;
 pub mod error;
-pub mod evaluate;
 pub mod fatigue;
 pub mod io;
-pub mod optim;
 pub mod plan;
-pub mod report;
-pub mod rest;
-pub mod rula;
-pub mod sweep;
-pub mod task;
+pub mod schema;
 pub mod validation;
 pub mod workstation;
 

@@ -8,7 +8,7 @@ use parry3d_f64::shape::{Capsule as PCapsule, Cuboid, Cylinder, HalfSpace, Shape
 use serde::{Deserialize, Serialize};
 
 /// An obstacle as written in a task file (metres, radians, world frame).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
     pub name: String,
@@ -22,7 +22,7 @@ pub struct ObstacleSpec {
     pub rpy_rad: [f64; 3],
 }
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ShapeSpec {
     /// Full edge lengths along the obstacle's x, y, z.
@@ -32,6 +32,11 @@ pub enum ShapeSpec {
     /// The solid half-space behind the plane: points p with (p − position)·normal ≤ 0.
     Plane { normal: [f64; 3] },
 }
+
+/// Largest obstacle dimension accepted \[m\].
+pub const MAX_SIZE_M: f64 = 1000.0;
+/// Largest obstacle coordinate accepted \[m\].
+pub const MAX_COORDINATE_M: f64 = 1000.0;
 
 /// Why an obstacle was refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -100,15 +105,21 @@ impl Obstacle {
         if !finite(&spec.position_m) || !finite(&spec.rpy_rad) {
             return Err(bad("position_m and rpy_rad must be finite".into()));
         }
+        if spec.position_m.iter().any(|x| x.abs() > MAX_COORDINATE_M) {
+            return Err(bad(format!(
+                "position_m must be within ±{MAX_COORDINATE_M} m, got {:?}",
+                spec.position_m
+            )));
+        }
         let q =
             UnitQuaternion::from_euler_angles(spec.rpy_rad[0], spec.rpy_rad[1], spec.rpy_rad[2]);
         let mut rot = parry3d_f64::glamx::DQuat::from_xyzw(q.i, q.j, q.k, q.w);
         let mut plane = None;
         let shape: Box<dyn Shape> = match &spec.shape {
             ShapeSpec::Box { size_m } => {
-                if !size_m.iter().all(|s| s.is_finite() && *s > 0.0) {
+                if !size_m.iter().all(|s| s.is_finite() && *s > 0.0 && *s <= MAX_SIZE_M) {
                     return Err(bad(format!(
-                        "box size_m must be finite and > 0, got {size_m:?}"
+                        "box size_m must be within 0..{MAX_SIZE_M} m, got {size_m:?}"
                     )));
                 }
                 Box::new(Cuboid::new(Vector::new(
@@ -120,10 +131,12 @@ impl Obstacle {
             ShapeSpec::Cylinder { radius_m, height_m } => {
                 if !(radius_m.is_finite()
                     && *radius_m > 0.0
+                    && *radius_m <= MAX_SIZE_M
                     && height_m.is_finite()
-                    && *height_m > 0.0)
+                    && *height_m > 0.0
+                    && *height_m <= MAX_SIZE_M)
                 {
-                    return Err(bad(format!("cylinder radius_m and height_m must be finite and > 0, got {radius_m}, {height_m}")));
+                    return Err(bad(format!("cylinder radius_m and height_m must be within 0..{MAX_SIZE_M} m, got {radius_m}, {height_m}")));
                 }
                 // parry's cylinder runs along its y axis; ours along z: turn +90° about x.
                 rot *= parry3d_f64::glamx::DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
@@ -189,6 +202,48 @@ impl Obstacle {
             normal: nv(c.normal1),
             point_m: nv(c.point1),
         })
+    }
+}
+
+impl Obstacle {
+    /// Signed clearance of a box (world pose, half extents) from this obstacle, if below
+    /// `within_m`; the witness point is on the box.
+    pub fn box_clearance(
+        &self,
+        index: usize,
+        world_from_box: &nalgebra::Isometry3<f64>,
+        half_extents_m: &Vector3<f64>,
+        within_m: f64,
+    ) -> Option<Clearance> {
+        let t = world_from_box.translation.vector;
+        let q = world_from_box.rotation;
+        let pose = Pose::from_parts(
+            Vector::new(t.x, t.y, t.z),
+            parry3d_f64::glamx::DQuat::from_xyzw(q.i, q.j, q.k, q.w),
+        );
+        let cube = Cuboid::new(v(half_extents_m));
+        let c = contact(&pose, &cube, &self.pose, self.shape.as_ref(), within_m)
+            .ok()
+            .flatten()?;
+        Some(Clearance {
+            obstacle: index,
+            distance_m: c.dist,
+            normal: nv(c.normal1),
+            point_m: nv(c.point1),
+        })
+    }
+
+    /// Whether world point `p` lies inside the obstacle.
+    pub fn contains(&self, p: &Vector3<f64>) -> bool {
+        if let Some((p0, n)) = &self.plane {
+            return n.dot(&(p - p0)) < 0.0;
+        }
+        self.shape.contains_point(&self.pose, v(p))
+    }
+
+    /// A plane with an upward normal at or below z = 0: the floor the feet stand on.
+    pub fn is_floor(&self) -> bool {
+        matches!(self.plane, Some((p0, n)) if n.z > 0.999 && p0.z <= 1e-3)
     }
 }
 

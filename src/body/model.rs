@@ -55,7 +55,25 @@ pub struct Link {
     /// The joint whose child this link is (None for the root).
     pub parent_joint: Option<usize>,
     pub capsules: Vec<Capsule>,
+    /// Collision boxes (e.g. feet: the sole is a box's bottom face).
+    pub boxes: Vec<LinkBox>,
 }
+
+/// A collision box in a link's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkBox {
+    pub link_from_box: Isometry3<f64>,
+    pub half_extents_m: Vector3<f64>,
+}
+
+/// Largest collision shape dimension accepted \[m\] (a body segment, not a building).
+pub const MAX_SHAPE_SIZE_M: f64 = 10.0;
+/// Largest joint offset, centre-of-mass offset or prismatic limit accepted \[m\].
+pub const MAX_OFFSET_M: f64 = 100.0;
+/// Largest link mass accepted \[kg\].
+pub const MAX_LINK_MASS_KG: f64 = 10_000.0;
+/// Most moving joints a body may have.
+pub const MAX_MOVING_JOINTS: usize = 512;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Joint {
@@ -106,6 +124,8 @@ pub struct BodyModel {
     pub q_body_pos_joint: Vec<Vector3<f64>>,
     /// Mass below each moving joint \[kg\] (posture-independent), per q index.
     pub q_subtree_mass_kg: Vec<f64>,
+    /// Total mass \[kg\].
+    pub mass_kg: f64,
 }
 
 /// A rigid body: links joined by fixed joints.
@@ -138,7 +158,7 @@ impl BodyModel {
     pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, BodyError> {
         let path = path.as_ref();
         let p = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| BodyError::Io {
+        let text = crate::io::read_text(path).map_err(|e| BodyError::Io {
             path: p.clone(),
             message: e.to_string(),
         })?;
@@ -175,41 +195,69 @@ impl BodyModel {
                 ));
             }
             let m = l.inertial.mass.value;
-            if !m.is_finite() || m < 0.0 {
+            if !m.is_finite() || !(0.0..=MAX_LINK_MASS_KG).contains(&m) {
                 return Err(invalid(
                     format!("link '{}' <inertial><mass>", l.name),
-                    format!("mass must be finite and >= 0 kg, got {m}"),
+                    format!("mass must be within 0..{MAX_LINK_MASS_KG} kg, got {m}"),
                 ));
             }
             let (xyz, rpy) = (&l.inertial.origin.xyz, &l.inertial.origin.rpy);
-            if !finite3(xyz) || !finite3(rpy) {
+            if !finite3(xyz) || !finite3(rpy) || xyz.iter().any(|x| x.abs() > MAX_OFFSET_M) {
                 return Err(invalid(
                     format!("link '{}' <inertial><origin>", l.name),
-                    "has a non-finite value".into(),
+                    format!("must be finite and within {MAX_OFFSET_M} m, got {:?}", xyz.0),
                 ));
             }
             let mut capsules = Vec::new();
-            for c in &l.collision {
-                // Capsules, and cylinders read as capsules (standard URDF has no capsule; a
-                // cylinder's capsule has the same axis segment and radius, so it is slightly
-                // longer: conservative for clearance).
-                if let urdf_rs::Geometry::Capsule { radius, length }
-                | urdf_rs::Geometry::Cylinder { radius, length } = c.geometry
-                {
-                    if !(radius.is_finite() && radius > 0.0 && length.is_finite() && length >= 0.0)
-                    {
+            let mut boxes = Vec::new();
+            for (ci, c) in l.collision.iter().enumerate() {
+                let el = || format!("link '{}' <collision>[{ci}]", l.name);
+                if !finite3(&c.origin.xyz) || !finite3(&c.origin.rpy) {
+                    return Err(invalid(el(), "<origin> has a non-finite value".into()));
+                }
+                let iso = pose(&c.origin);
+                let size_ok = |x: f64| x.is_finite() && x > 0.0 && x <= MAX_SHAPE_SIZE_M;
+                match c.geometry {
+                    // Capsules, and cylinders read as capsules (standard URDF has no capsule; a
+                    // cylinder's capsule has the same axis segment and radius, so it is slightly
+                    // longer: conservative for clearance). Spheres are capsules of zero length.
+                    urdf_rs::Geometry::Capsule { radius, length }
+                    | urdf_rs::Geometry::Cylinder { radius, length } => {
+                        if !(size_ok(radius) && length.is_finite() && (0.0..=MAX_SHAPE_SIZE_M).contains(&length)) {
+                            return Err(invalid(
+                                el(),
+                                format!("capsule/cylinder radius must be in (0, {MAX_SHAPE_SIZE_M}] m and length in [0, {MAX_SHAPE_SIZE_M}] m, got {radius}, {length}"),
+                            ));
+                        }
+                        // URDF capsules (like cylinders) lie along the z axis of their origin frame.
+                        capsules.push(Capsule {
+                            a: iso * Point3::new(0.0, 0.0, -length / 2.0),
+                            b: iso * Point3::new(0.0, 0.0, length / 2.0),
+                            radius_m: radius,
+                        });
+                    }
+                    urdf_rs::Geometry::Sphere { radius } => {
+                        if !size_ok(radius) {
+                            return Err(invalid(el(), format!("sphere radius must be in (0, {MAX_SHAPE_SIZE_M}] m, got {radius}")));
+                        }
+                        let p = iso * Point3::origin();
+                        capsules.push(Capsule { a: p, b: p, radius_m: radius });
+                    }
+                    urdf_rs::Geometry::Box { ref size } => {
+                        if !size.iter().all(|&x| size_ok(x)) {
+                            return Err(invalid(el(), format!("box size must be in (0, {MAX_SHAPE_SIZE_M}] m, got {:?}", size.0)));
+                        }
+                        boxes.push(LinkBox {
+                            link_from_box: iso,
+                            half_extents_m: Vector3::new(size[0] / 2.0, size[1] / 2.0, size[2] / 2.0),
+                        });
+                    }
+                    urdf_rs::Geometry::Mesh { ref filename, .. } => {
                         return Err(invalid(
-                            format!("link '{}' <collision> capsule/cylinder", l.name),
-                            format!("radius must be > 0 and length >= 0, got {radius}, {length}"),
+                            el(),
+                            format!("mesh collision geometry ('{filename}') is not supported: use box, cylinder, capsule or sphere shapes for collision"),
                         ));
                     }
-                    // URDF capsules (like cylinders) lie along the z axis of their origin frame.
-                    let iso = pose(&c.origin);
-                    capsules.push(Capsule {
-                        a: iso * Point3::new(0.0, 0.0, -length / 2.0),
-                        b: iso * Point3::new(0.0, 0.0, length / 2.0),
-                        radius_m: radius,
-                    });
                 }
             }
             links.push(Link {
@@ -218,6 +266,7 @@ impl BodyModel {
                 com_m: Point3::from(vec3(xyz)),
                 parent_joint: None,
                 capsules,
+                boxes,
             });
         }
 
@@ -272,10 +321,13 @@ impl BodyModel {
                 ));
             }
             child_of[child] = Some(ji);
-            if !finite3(&j.origin.xyz) || !finite3(&j.origin.rpy) {
+            if !finite3(&j.origin.xyz)
+                || !finite3(&j.origin.rpy)
+                || j.origin.xyz.iter().any(|x| x.abs() > MAX_OFFSET_M)
+            {
                 return Err(invalid(
                     format!("joint '{}' <origin>", j.name),
-                    "has a non-finite value".into(),
+                    format!("must be finite and within {MAX_OFFSET_M} m, got {:?}", j.origin.xyz.0),
                 ));
             }
             if kind != JointKind::Fixed {
@@ -351,6 +403,20 @@ impl BodyModel {
                 return Err(invalid(
                     format!("joint '{}' <limit>", j.name),
                     format!("lower {lower} must not exceed upper {upper}"),
+                ));
+            }
+            if kind == JointKind::Prismatic
+                && !(lower.abs() <= MAX_OFFSET_M && upper.abs() <= MAX_OFFSET_M)
+            {
+                return Err(invalid(
+                    format!("joint '{}' <limit>", j.name),
+                    format!("a prismatic joint's limits must be within ±{MAX_OFFSET_M} m, got {lower}..{upper}"),
+                ));
+            }
+            if moving && joint_of_q.len() >= MAX_MOVING_JOINTS {
+                return Err(invalid(
+                    "robot".into(),
+                    format!("has more than {MAX_MOVING_JOINTS} moving joints"),
                 ));
             }
             let q_index = moving.then(|| {
@@ -481,6 +547,7 @@ impl BodyModel {
                     .sum()
             })
             .collect();
+        let mass_kg = links.iter().map(|l| l.mass_kg).sum();
         Ok(BodyModel {
             name: robot.name.clone(),
             links,
@@ -495,6 +562,7 @@ impl BodyModel {
             q_body_rot_joint,
             q_body_pos_joint,
             q_subtree_mass_kg,
+            mass_kg,
         })
     }
 
@@ -556,6 +624,6 @@ impl BodyModel {
 
     /// Total mass \[kg\].
     pub fn total_mass_kg(&self) -> f64 {
-        self.links.iter().map(|l| l.mass_kg).sum()
+        self.mass_kg
     }
 }

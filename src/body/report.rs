@@ -1,7 +1,7 @@
 //! The `statics` report: one posture, one hand frame, per DESIGN §6.
 
 use super::model::{BodyError, BodyModel};
-use super::statics::{holding_torques, StaticsData};
+use super::statics::{holding_torques, PointLoad, StaticsData};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -36,8 +36,12 @@ pub fn statics_report(
     for (name, v) in q_named {
         q[model.q_index(name)?] = *v;
     }
-    let mut d = StaticsData::new(model);
-    holding_torques(model, &mut d, &q, hand, &force_on_hand_n, &gravity_m_s2);
+    let mut d = StaticsData::new(model, 1);
+    let load = PointLoad::force_at(hand, force_on_hand_n);
+    holding_torques(model, &mut d, &q, &[load], &gravity_m_s2);
+    let hand_pos = d.load_point_w[0];
+    let mut jac = nalgebra::Matrix3xX::zeros(model.nq());
+    d.point_jacobian(model, hand, &hand_pos, &mut jac);
     let joints = (0..model.nq())
         .map(|i| JointStatics {
             name: model.q_joint(i).name.clone(),
@@ -49,7 +53,7 @@ pub fn statics_report(
         .collect();
     let jacobian = (0..model.nq())
         .map(|i| {
-            let c = d.jacobian.column(i);
+            let c = jac.column(i);
             (
                 model.q_joint(i).name.clone(),
                 serde_json::json!([c[0], c[1], c[2]]),
@@ -58,7 +62,7 @@ pub fn statics_report(
         .collect();
     Ok(StaticsReport {
         frame: frame.to_string(),
-        position_m: [d.hand_pos_m.x, d.hand_pos_m.y, d.hand_pos_m.z],
+        position_m: [hand_pos.x, hand_pos.y, hand_pos.z],
         joints,
         jacobian,
     })

@@ -1,21 +1,24 @@
-//! Static holding torques, Jacobians and their derivatives, on a preallocated workspace.
+//! Static holding torques, Jacobians, the centre of mass and their derivatives, on a
+//! preallocated workspace.
 //!
 //! Conventions: world frame x forward, y left, z up; metres, radians, newtons, N·m.
 //! `q_rad[i]` is the position of the moving joint with q index `i` (radians; metres for a
-//! prismatic joint). For a posture q, a hand frame h, a force `F` that the environment applies
-//! on the hand (a carried load of m kg: `F = m·g`) and gravity `g` (default `(0, 0, −9.81)`):
+//! prismatic joint). For a posture q, external loads — forces `F_e` that the environment applies
+//! at points `p_e` fixed on links, and pure moments `M_e` — and gravity `g` (default
+//! `(0, 0, −9.81)`):
 //!
 //! * `τ_gravity(q)`: the torque each joint must produce to hold the posture against gravity,
 //!   `τ_gravity = −Σ_links J_c(l)ᵀ m_l g`;
-//! * `τ_load(q) = −J_h(q)ᵀ F`;
+//! * `τ_load(q) = −Σ_e (J_p(e)ᵀ F_e + J_ω(e)ᵀ M_e)`;
 //! * holding torque `τ = τ_gravity + τ_load`; τ > 0: the joint must push in its positive
-//!   direction (about its axis by the right-hand rule);
-//! * `J_h`: the 3×n positional Jacobian of the hand frame origin, world axes.
+//!   direction (about its axis by the right-hand rule). A carried load of m kg is `F = m·g`.
 //!
-//! With `a_j` the world axis of joint j, `o_j` its world origin, `V_j = Σ_{l ∈ subtree(j)} m_l
-//! (c_l − o_j)` and `W_j = p_h − o_j` (zero if the hand is not below j), a revolute joint holds
-//! `τ_j = −a_j·(V_j × g) − a_j·(W_j × F)`; a prismatic one `τ_j = −a_j·(M_j g + F)`. The derivative
-//! `∂τ/∂q` follows from the rigid motion of the subtree (see [`holding_torque_derivative`]).
+//! With `a_j` the world axis of joint j, `o_j` its world origin and `V_j = Σ_{l ∈ subtree(j)}
+//! m_l (c_l − o_j)`, a revolute joint holds `τ_j = −a_j·(V_j × g) − Σ_{e below j}
+//! a_j·((p_e − o_j) × F_e + M_e)`; a prismatic one `τ_j = −a_j·(M_j g + Σ_{e below j} F_e)`.
+//! The derivative `∂τ/∂q` follows from the rigid motion of each subtree
+//! ([`holding_torque_derivative`]). The centre of mass's Jacobian falls out of the same subtree
+//! moments: its column for a revolute joint is `a_k × V_k / M`.
 
 use super::model::{BodyModel, JointKind};
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
@@ -23,8 +26,32 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 /// Earth's gravity in the world frame [m/s²].
 pub const GRAVITY_M_S2: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 
-/// Workspace for statics; sized once for a model, reused for every posture. Per-joint arrays are
-/// indexed by q index; per-body arrays by rigid body (0 = root, `k + 1` = moved by q index k).
+/// A load the environment applies on the body: a force at a point fixed on a link, and a pure
+/// moment, both in world axes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointLoad {
+    pub link: usize,
+    /// The point of application in the link's frame.
+    pub point_in_link_m: Vector3<f64>,
+    pub force_n: Vector3<f64>,
+    pub moment_nm: Vector3<f64>,
+}
+
+impl PointLoad {
+    /// A force at a link's frame origin.
+    pub fn force_at(link: usize, force_n: Vector3<f64>) -> Self {
+        PointLoad {
+            link,
+            point_in_link_m: Vector3::zeros(),
+            force_n,
+            moment_nm: Vector3::zeros(),
+        }
+    }
+}
+
+/// Workspace for statics; sized once for a model and a number of external loads, reused for
+/// every posture. Per-joint arrays are indexed by q index; per-body arrays by rigid body
+/// (0 = root, `k + 1` = moved by q index k).
 #[derive(Debug, Clone)]
 pub struct StaticsData {
     /// World rotation and position of each rigid body frame.
@@ -36,31 +63,32 @@ pub struct StaticsData {
     /// First mass moment Σ m c [kg·m] of the subtree below each joint.
     sub_moment: Vec<Vector3<f64>>,
     body_moment: Vec<Vector3<f64>>,
-    /// Per q index: a×V (gravity lever), a×W (hand lever; 0 if the hand is not below),
-    /// a×g, a×F, and whether the joint carries the hand.
+    /// Per q index: a×V (gravity lever) and a×g.
     a_cross_v: Vec<Vector3<f64>>,
-    a_cross_w: Vec<Vector3<f64>>,
     a_cross_g: Vec<Vector3<f64>>,
+    /// Per (q index, load): a×(p_e − o), zero if the load is not below the joint (row-major by q).
+    a_cross_w: Vec<Vector3<f64>>,
+    /// Per (q index, load): a×F_e.
     a_cross_f: Vec<Vector3<f64>>,
-    carries_hand: Vec<bool>,
     /// (sin, cos) of each revolute joint angle, computed in one batch ahead of the chain.
     sin_cos: Vec<(f64, f64)>,
-    /// Hand frame link, position, and the force on it from the last [`holding_torques`] call.
-    pub hand_link: usize,
-    pub hand_pos_m: Vector3<f64>,
-    pub force_on_hand_n: Vector3<f64>,
+    /// The loads of the last [`holding_torques`] call, and their world points.
+    pub loads: Vec<PointLoad>,
+    pub load_point_w: Vec<Vector3<f64>>,
     pub gravity_m_s2: Vector3<f64>,
-    /// 3×nq positional Jacobian of the hand frame origin.
-    pub jacobian: Matrix3xX<f64>,
     pub tau_gravity_nm: DVector<f64>,
     pub tau_load_nm: DVector<f64>,
     pub tau_nm: DVector<f64>,
+    /// Whole-body centre of mass and its 3×nq Jacobian (after [`holding_torques`]).
+    pub com_m: Vector3<f64>,
+    pub com_jacobian: Matrix3xX<f64>,
     /// ∂τ/∂q (nq×nq), filled by [`holding_torque_derivative`].
     pub dtau_dq: DMatrix<f64>,
 }
 
 impl StaticsData {
-    pub fn new(model: &BodyModel) -> Self {
+    /// A workspace for `model` with room for `n_loads` external loads.
+    pub fn new(model: &BodyModel, n_loads: usize) -> Self {
         let nq = model.nq();
         let nb = model.bodies.len();
         StaticsData {
@@ -71,21 +99,25 @@ impl StaticsData {
             sub_moment: vec![Vector3::zeros(); nq],
             body_moment: vec![Vector3::zeros(); nb],
             a_cross_v: vec![Vector3::zeros(); nq],
-            a_cross_w: vec![Vector3::zeros(); nq],
             a_cross_g: vec![Vector3::zeros(); nq],
-            a_cross_f: vec![Vector3::zeros(); nq],
-            carries_hand: vec![false; nq],
+            a_cross_w: vec![Vector3::zeros(); nq * n_loads],
+            a_cross_f: vec![Vector3::zeros(); nq * n_loads],
             sin_cos: vec![(0.0, 1.0); nq],
-            hand_link: 0,
-            hand_pos_m: Vector3::zeros(),
-            force_on_hand_n: Vector3::zeros(),
+            loads: Vec::with_capacity(n_loads),
+            load_point_w: vec![Vector3::zeros(); n_loads],
             gravity_m_s2: GRAVITY_M_S2,
-            jacobian: Matrix3xX::zeros(nq),
             tau_gravity_nm: DVector::zeros(nq),
             tau_load_nm: DVector::zeros(nq),
             tau_nm: DVector::zeros(nq),
+            com_m: Vector3::zeros(),
+            com_jacobian: Matrix3xX::zeros(nq),
             dtau_dq: DMatrix::zeros(nq, nq),
         }
+    }
+
+    /// Most loads this workspace takes.
+    pub fn capacity(&self) -> usize {
+        self.load_point_w.len()
     }
 
     /// World rotation and position of link `l` after [`forward_kinematics`].
@@ -100,6 +132,41 @@ impl StaticsData {
         let lb = &model.link_in_body[l];
         let r = self.body_rot[lb.body];
         self.body_pos[lb.body] + r * (lb.pos + lb.rot * p)
+    }
+
+    /// Positional Jacobian (3×nq) of world point `p_w` moving with link `l`, into `out`.
+    pub fn point_jacobian(
+        &self,
+        model: &BodyModel,
+        l: usize,
+        p_w: &Vector3<f64>,
+        out: &mut Matrix3xX<f64>,
+    ) {
+        let body = model.link_in_body[l].body;
+        for k in 0..model.nq() {
+            let col = if !model.q_moves_body(k, body) {
+                Vector3::zeros()
+            } else if model.q_joint(k).kind == JointKind::Prismatic {
+                self.axis_w[k]
+            } else {
+                self.axis_w[k].cross(&(p_w - self.origin_w[k]))
+            };
+            out.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+        }
+    }
+
+    /// Angular Jacobian (3×nq) of link `l`, into `out`.
+    pub fn angular_jacobian(&self, model: &BodyModel, l: usize, out: &mut Matrix3xX<f64>) {
+        let body = model.link_in_body[l].body;
+        for k in 0..model.nq() {
+            let col = if model.q_moves_body(k, body) && model.q_joint(k).kind != JointKind::Prismatic
+            {
+                self.axis_w[k]
+            } else {
+                Vector3::zeros()
+            };
+            out.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+        }
     }
 }
 
@@ -122,7 +189,6 @@ fn axis_angle(axis: &Vector3<f64>, (s, c): (f64, f64)) -> Matrix3<f64> {
 }
 
 /// `r0 · R(sign·e_k, θ)` from `(sin θ, cos θ)`, rotating only the two columns that change.
-/// Built from whole columns (no partial writes into a matrix that is read back at once).
 #[inline]
 fn rotate_about_coordinate_axis(
     r0: &Matrix3<f64>,
@@ -153,8 +219,7 @@ pub fn forward_kinematics(model: &BodyModel, data: &mut StaticsData, q_rad: &[f6
     for (sc, q) in data.sin_cos.iter_mut().zip(q_rad) {
         *sc = q.sin_cos();
     }
-    // In a chain, a joint's parent body is the previous joint's: keep that pose in registers
-    // instead of reading back what was just stored (a store-to-load round trip on the critical path).
+    // In a chain, a joint's parent body is the previous joint's: keep that pose in registers.
     let mut prev_body = 0;
     let mut prev_r = data.body_rot[0];
     let mut prev_p = data.body_pos[0];
@@ -188,23 +253,24 @@ pub fn forward_kinematics(model: &BodyModel, data: &mut StaticsData, q_rad: &[f6
     }
 }
 
-/// Computes forward kinematics, the hand Jacobian and the holding torques for posture `q_rad`,
-/// hand frame link `hand_link`, force `force_on_hand_n` applied on the hand by the environment,
-/// and gravity `gravity_m_s2`. Results land in `data`; nothing is allocated.
+/// Computes forward kinematics, the centre of mass with its Jacobian, and the holding torques
+/// for posture `q_rad` under `loads` (at most the workspace's capacity) and gravity
+/// `gravity_m_s2`. Results land in `data`; nothing is allocated.
 pub fn holding_torques(
     model: &BodyModel,
     data: &mut StaticsData,
     q_rad: &[f64],
-    hand_link: usize,
-    force_on_hand_n: &Vector3<f64>,
+    loads: &[PointLoad],
     gravity_m_s2: &Vector3<f64>,
 ) {
     forward_kinematics(model, data, q_rad);
-    let hand_body = model.link_in_body[hand_link].body;
-    data.hand_link = hand_link;
-    data.hand_pos_m = data.link_point(model, hand_link, &Vector3::zeros());
-    data.force_on_hand_n = *force_on_hand_n;
-    data.gravity_m_s2 = *gravity_m_s2;
+    mass_moments(model, data);
+    apply_loads(model, data, loads, gravity_m_s2);
+}
+
+/// Subtree first mass moments, the centre of mass and its Jacobian, and the gravity levers,
+/// after [`forward_kinematics`].
+pub fn mass_moments(model: &BodyModel, data: &mut StaticsData) {
     for (b, body) in model.bodies.iter().enumerate() {
         data.body_moment[b] = if body.mass_kg > 0.0 {
             body.mass_kg * (data.body_rot[b] * body.com_m + data.body_pos[b])
@@ -212,8 +278,8 @@ pub fn holding_torques(
             Vector3::zeros()
         };
     }
-    // Subtree moments, leaves first. Bodies below k + 1 were folded into it already; along a chain
-    // (parent body k of joint k) the running sum stays in a register for the next iteration.
+    // Subtree moments, leaves first. Along a chain (parent body k of joint k) the running sum
+    // stays in a register for the next iteration.
     let mut carry = Vector3::zeros();
     let mut carry_to = usize::MAX;
     for k in (0..model.nq()).rev() {
@@ -231,60 +297,101 @@ pub fn holding_torques(
             carry_to = usize::MAX;
         }
     }
-    let g = *gravity_m_s2;
-    let f = *force_on_hand_n;
+    let total = model.mass_kg;
+    let root_moment = data.body_moment[0];
+    data.com_m = if total > 0.0 {
+        root_moment / total
+    } else {
+        Vector3::zeros()
+    };
+    let inv_m = if total > 0.0 { 1.0 / total } else { 0.0 };
     for (k, &ji) in model.joint_of_q.iter().enumerate() {
         let a = data.axis_w[k];
-        let carries_hand = model.q_moves_body(k, hand_body);
-        data.carries_hand[k] = carries_hand;
         let mass = model.q_subtree_mass_kg[k];
-        let (tg, tl, col) = if model.joints[ji].kind == JointKind::Prismatic {
-            data.a_cross_v[k] = Vector3::zeros();
-            data.a_cross_w[k] = Vector3::zeros();
-            let tg = -a.dot(&(mass * g));
-            if carries_hand {
-                (tg, -a.dot(&f), a)
-            } else {
-                (tg, 0.0, Vector3::zeros())
-            }
+        let (av, col) = if model.joints[ji].kind == JointKind::Prismatic {
+            (Vector3::zeros(), a * (mass * inv_m))
         } else {
-            let o = data.origin_w[k];
-            // τ_g = −a·(V×g) = −g·(a×V); τ_load = −a·(W×F) = −F·(a×W); J column = a×W
-            let av = a.cross(&(data.sub_moment[k] - mass * o));
-            let aw = if carries_hand {
-                a.cross(&(data.hand_pos_m - o))
-            } else {
-                Vector3::zeros()
-            };
-            data.a_cross_v[k] = av;
-            data.a_cross_w[k] = aw;
-            (-g.dot(&av), -f.dot(&aw), aw)
+            let av = a.cross(&(data.sub_moment[k] - mass * data.origin_w[k]));
+            (av, av * inv_m)
         };
-        data.tau_gravity_nm[k] = tg;
-        data.tau_load_nm[k] = tl;
-        data.tau_nm[k] = tg + tl;
-        data.jacobian.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+        data.a_cross_v[k] = av;
+        data.com_jacobian.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
     }
 }
 
-/// ∂τ/∂q of the holding torque at the posture of the last [`holding_torques`] call, into
-/// `data.dtau_dq` (row: torque of joint j, column: q_i). Analytic, from the rigid motion of each
-/// subtree: for revolute joints,
+/// The torques of gravity and `loads`, after [`mass_moments`].
+pub fn apply_loads(
+    model: &BodyModel,
+    data: &mut StaticsData,
+    loads: &[PointLoad],
+    gravity_m_s2: &Vector3<f64>,
+) {
+    let ne = loads.len();
+    assert!(
+        ne <= data.capacity(),
+        "statics workspace sized for {} loads, given {ne}",
+        data.capacity()
+    );
+    data.loads.clear();
+    data.loads.extend_from_slice(loads);
+    data.gravity_m_s2 = *gravity_m_s2;
+    for (e, ld) in loads.iter().enumerate() {
+        data.load_point_w[e] = data.link_point(model, ld.link, &ld.point_in_link_m);
+    }
+    let g = *gravity_m_s2;
+    let stride = data.capacity();
+    for (k, &ji) in model.joint_of_q.iter().enumerate() {
+        let a = data.axis_w[k];
+        let prismatic = model.joints[ji].kind == JointKind::Prismatic;
+        let mass = model.q_subtree_mass_kg[k];
+        let tg = if prismatic {
+            -a.dot(&(mass * g))
+        } else {
+            -g.dot(&data.a_cross_v[k])
+        };
+        let o = data.origin_w[k];
+        let mut tl = 0.0;
+        for (e, ld) in loads.iter().enumerate() {
+            let below = model.q_moves_body(k, model.link_in_body[ld.link].body);
+            let idx = k * stride + e;
+            if !below {
+                data.a_cross_w[idx] = Vector3::zeros();
+                data.a_cross_f[idx] = Vector3::zeros();
+                continue;
+            }
+            data.a_cross_f[idx] = a.cross(&ld.force_n);
+            if prismatic {
+                data.a_cross_w[idx] = Vector3::zeros();
+                tl -= a.dot(&ld.force_n);
+            } else {
+                // τ = −a·(W×F) − a·M = −F·(a×W) − a·M
+                let aw = a.cross(&(data.load_point_w[e] - o));
+                data.a_cross_w[idx] = aw;
+                tl -= ld.force_n.dot(&aw) + a.dot(&ld.moment_nm);
+            }
+        }
+        data.tau_gravity_nm[k] = tg;
+        data.tau_load_nm[k] = tl;
+        data.tau_nm[k] = tg + tl;
+    }
+}
+
+/// ∂τ/∂q of the holding torque at the posture and loads of the last [`holding_torques`] call
+/// (loads fixed in the world), into `data.dtau_dq` (row: torque of joint j, column: q_i).
+/// Analytic, from the rigid motion of each subtree (rotating a whole subtree together with the
+/// world-fixed forces leaves its torques unchanged, which turns every case into dot products of
+/// cached levers): for revolute joints,
 ///
-/// * i a strict ancestor of j (a_j and V_j, W_j turn with q_i): `a_j·(V_j×(a_i×g)) + a_j·(W_j×(a_i×F))`;
-/// * i in the subtree of j, i = j included (only subtree(i) moves): `−a_j·((a_i×V_i)×g) − a_j·((a_i×W_i)×F)`;
+/// * i a strict ancestor of j: `(a_i×g)·(a_j×V_j) + Σ_e [(a_i×F_e)·(a_j×W_je) + a_j·(a_i×M_e)]`;
+/// * i in the subtree of j, i = j included: `(a_i×V_i)·(a_j×g) + Σ_{e below i} (a_i×W_ie)·(a_j×F_e)`;
 /// * otherwise 0; prismatic joints translate their subtree (`∂V_j = M_i a_i`) and turn nothing.
 pub fn holding_torque_derivative(model: &BodyModel, data: &mut StaticsData) {
-    // With the triple-product identity a·(V×c) = c·(a×V), both revolute cases are dot products of
-    // quantities cached by `holding_torques`:
-    //   i strict ancestor of j:  (a_i×g)·(a_j×V_j) + (a_i×F)·(a_j×W_j)
-    //   i in subtree of j:       (a_i×V_i)·(a_j×g) + (a_i×W_i)·(a_j×F)
     let g = data.gravity_m_s2;
-    let f = data.force_on_hand_n;
     let nq = model.nq();
+    let ne = data.loads.len();
+    let stride = data.capacity();
     for k in 0..nq {
         data.a_cross_g[k] = data.axis_w[k].cross(&g);
-        data.a_cross_f[k] = data.axis_w[k].cross(&f);
     }
     for row in 0..nq {
         let row_prismatic = model.q_joint(row).kind == JointKind::Prismatic;
@@ -294,29 +401,45 @@ pub fn holding_torque_derivative(model: &BodyModel, data: &mut StaticsData) {
             let in_subtree = model.q_is_ancestor_or_self(row, col);
             let d = match (row_prismatic, col_prismatic) {
                 (false, false) if strict_ancestor => {
-                    data.a_cross_g[col].dot(&data.a_cross_v[row])
-                        + data.a_cross_f[col].dot(&data.a_cross_w[row])
+                    let mut d = data.a_cross_g[col].dot(&data.a_cross_v[row]);
+                    let (ai, aj) = (data.axis_w[col], data.axis_w[row]);
+                    for e in 0..ne {
+                        let ir = row * stride + e;
+                        let ld = &data.loads[e];
+                        if !model.q_moves_body(row, model.link_in_body[ld.link].body) {
+                            continue;
+                        }
+                        d += ai.cross(&ld.force_n).dot(&data.a_cross_w[ir])
+                            + aj.dot(&ai.cross(&ld.moment_nm));
+                    }
+                    d
                 }
                 (false, false) if in_subtree => {
-                    data.a_cross_v[col].dot(&data.a_cross_g[row])
-                        + data.a_cross_w[col].dot(&data.a_cross_f[row])
+                    let mut d = data.a_cross_v[col].dot(&data.a_cross_g[row]);
+                    for e in 0..ne {
+                        d += data.a_cross_w[col * stride + e].dot(&data.a_cross_f[row * stride + e]);
+                    }
+                    d
                 }
                 (true, false) if strict_ancestor => {
-                    // τ_j = −a_j·(M_j g + F): a_j turns with q_i
-                    let load = model.q_subtree_mass_kg[row] * g
-                        + if data.carries_hand[row] {
-                            f
-                        } else {
-                            Vector3::zeros()
-                        };
+                    // τ_j = −a_j·(M_j g + Σ F_e): a_j turns with q_i
+                    let mut load = model.q_subtree_mass_kg[row] * g;
+                    for e in 0..ne {
+                        if model.q_moves_body(row, model.link_in_body[data.loads[e].link].body) {
+                            load += data.loads[e].force_n;
+                        }
+                    }
                     -data.axis_w[col].cross(&data.axis_w[row]).dot(&load)
                 }
                 (false, true) if in_subtree && col != row => {
-                    // subtree(i) translates along a_i: ∂V_j = M_i a_i, ∂W_j = a_i (if it carries the hand)
+                    // subtree(i) translates along a_i: ∂V_j = M_i a_i, ∂W_je = a_i (loads below i)
                     let (aj, ai) = (data.axis_w[row], data.axis_w[col]);
                     let mut d = -aj.dot(&(model.q_subtree_mass_kg[col] * ai).cross(&g));
-                    if data.carries_hand[col] {
-                        d -= aj.dot(&ai.cross(&f));
+                    for e in 0..ne {
+                        let ld = &data.loads[e];
+                        if model.q_moves_body(col, model.link_in_body[ld.link].body) {
+                            d -= aj.dot(&ai.cross(&ld.force_n));
+                        }
                     }
                     d
                 }

@@ -1,16 +1,26 @@
 //! Half-joint strength: each joint direction is a muscle group with its own MVC torque.
 //!
-//! Strength tables are YAML files beside the URDF (`NAME.strength.yaml` for `NAME.urdf`); see
-//! `robots/worker.strength.yaml` for the format, sources and the scaling rule. Half-joint ids are
-//! `JOINT+` (produces positive torque) and `JOINT-`. Load of a half-joint: `f± = max(±τ, 0) / MVC±`.
+//! Strength tables are YAML files beside the URDF (`NAME.strength.yaml` for `NAME.urdf`); the
+//! shipped one, `robots/worker.strength.yaml`, gives for every half-joint of the generated worker
+//! the population mean and standard deviation of maximum isometric torque for men and women, the
+//! posture where they were measured, posture dependence, and the source of every number
+//! (`docs/strength.md` has the table). Half-joint ids are `JOINT+` (produces positive torque) and
+//! `JOINT-`. Load of a half-joint: `f± = max(±τ, 0) / MVC±(q)`.
+//!
+//! **One scaling.** A worker of sex s at strength percentile p has
+//! `MVC = max(mean_s + z_p · sd_s, 0.05 · mean_s) × Π posture factors(q)`, `z_p` the standard
+//! normal quantile. The population SDs already contain body size, so nothing else scales it.
+//! Posture factors are shape-preserving cubic (PCHIP) interpolants of the table's points, so the
+//! MVC is smooth in q for the optimiser and exact at every tabulated angle.
 
 use super::model::BodyModel;
 use super::worker::{Sex, Worker};
 use serde::{Deserialize, Serialize};
+use statrs::distribution::{ContinuousCDF, Normal};
 use std::path::{Path, PathBuf};
 
 /// Torque direction of a half-joint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Direction {
     #[serde(rename = "+")]
     Positive,
@@ -33,31 +43,66 @@ impl Direction {
     }
 }
 
+/// Body side of a two-sided entry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TableSide {
+    R,
+    L,
+}
+
+impl TableSide {
+    fn prefix(self) -> &'static str {
+        match self {
+            TableSide::R => "r_",
+            TableSide::L => "l_",
+        }
+    }
+    fn word(self) -> &'static str {
+        match self {
+            TableSide::R => "right",
+            TableSide::L => "left",
+        }
+    }
+}
+
+/// Population mean and standard deviation of an MVC torque \[N·m\].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeanSd {
+    pub mean_nm: f64,
+    pub sd_nm: f64,
+}
+
+/// A posture factor on the mean: `factor` at `deg` of `joint` (same side as the muscle group
+/// when written without a side prefix).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ReferenceWorker {
-    pub sex: Sex,
-    pub stature_m: f64,
-    pub mass_kg: f64,
+pub struct PostureCurve {
+    pub joint: String,
+    pub deg: Vec<f64>,
+    pub factor: Vec<f64>,
 }
 
 /// One row of a strength table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StrengthEntry {
+    /// Joint name, without the side prefix when `sides` is given.
     pub joint: String,
-    pub direction: Direction,
-    /// Muscle-group name.
-    pub group: String,
-    /// Body region (selects fatigue parameters: trunk, shoulder, elbow, grip, ...).
-    pub region: String,
-    /// MVC torque of the reference worker at q = 0 [N·m].
-    pub mvc_nm: f64,
-    /// Female / male strength ratio.
-    pub female_factor: f64,
-    /// Optional posture dependence: MVC(q) = MVC·clamp(1 + s·q, 0.5, 1.5), q this joint's angle.
     #[serde(default)]
-    pub posture_slope_per_rad: Option<f64>,
+    pub sides: Option<Vec<TableSide>>,
+    pub direction: Direction,
+    /// Muscle-group name in words ("shoulder flexors"); two-sided groups get "right"/"left".
+    pub group: String,
+    /// Body region (selects fatigue parameters: trunk, neck, shoulder, elbow, grip, hip, knee, ankle).
+    pub region: String,
+    pub male: MeanSd,
+    pub female: MeanSd,
+    #[serde(default)]
+    pub reference_posture: String,
+    #[serde(default)]
+    pub posture: Vec<PostureCurve>,
     pub source: String,
 }
 
@@ -65,9 +110,9 @@ pub struct StrengthEntry {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StrengthTable {
-    pub reference_worker: ReferenceWorker,
-    pub mass_exponent: f64,
-    pub coefficient_of_variation: f64,
+    /// Joints without muscles (a floating base): no half-joints, their torque must vanish.
+    #[serde(default)]
+    pub unactuated: Vec<String>,
     pub half_joints: Vec<StrengthEntry>,
 }
 
@@ -86,10 +131,10 @@ pub enum StrengthError {
         dir: &'static str,
         problem: String,
     },
-    #[error("{path}: {field}: {problem}")]
-    Field {
+    #[error("{path}: joint '{joint}': {problem}")]
+    Joint {
         path: String,
-        field: &'static str,
+        joint: String,
         problem: String,
     },
 }
@@ -97,49 +142,44 @@ pub enum StrengthError {
 /// The table shipped with the default worker.
 pub const DEFAULT_TABLE_YAML: &str = include_str!("../../robots/worker.strength.yaml");
 
-/// Standard normal quantile (Acklam's rational approximation, |error| < 1.2e-9).
+/// Standard normal quantile of probability `p` in (0, 1).
 pub fn normal_quantile(p: f64) -> f64 {
-    const A: [f64; 6] = [
-        -3.969683028665376e1,
-        2.209460984245205e2,
-        -2.759285104469687e2,
-        1.38357751867269e2,
-        -3.066479806614716e1,
-        2.506628277459239,
-    ];
-    const B: [f64; 5] = [
-        -5.447609879822406e1,
-        1.615858368580409e2,
-        -1.556989798598866e2,
-        6.680131188771972e1,
-        -1.328068155288572e1,
-    ];
-    const C: [f64; 6] = [
-        -7.784894002430293e-3,
-        -3.223964580411365e-1,
-        -2.400758277161838,
-        -2.549732539343734,
-        4.374664141464968,
-        2.938163982698783,
-    ];
-    const D: [f64; 4] = [
-        7.784695709041462e-3,
-        3.224671290700398e-1,
-        2.445134137142996,
-        3.754408661907416,
-    ];
-    let pl = 0.02425;
-    if p < pl {
-        let q = (-2.0 * p.ln()).sqrt();
-        (((((C[0] * q + C[1]) * q + C[2]) * q + C[3]) * q + C[4]) * q + C[5])
-            / ((((D[0] * q + D[1]) * q + D[2]) * q + D[3]) * q + 1.0)
-    } else if p <= 1.0 - pl {
-        let q = p - 0.5;
-        let r = q * q;
-        (((((A[0] * r + A[1]) * r + A[2]) * r + A[3]) * r + A[4]) * r + A[5]) * q
-            / (((((B[0] * r + B[1]) * r + B[2]) * r + B[3]) * r + B[4]) * r + 1.0)
-    } else {
-        -normal_quantile(1.0 - p)
+    standard_normal().inverse_cdf(p)
+}
+
+/// Standard normal cumulative probability of `z`.
+pub fn normal_cdf(z: f64) -> f64 {
+    standard_normal().cdf(z)
+}
+
+fn standard_normal() -> Normal {
+    Normal::standard()
+}
+
+impl StrengthEntry {
+    fn stats(&self, sex: Sex) -> MeanSd {
+        match sex {
+            Sex::Male => self.male,
+            Sex::Female => self.female,
+        }
+    }
+
+    /// MVC \[N·m\] at the reference posture for a worker of sex `sex` at strength percentile
+    /// `percentile` (1–99).
+    pub fn mvc_at_percentile(&self, sex: Sex, percentile: f64) -> f64 {
+        let s = self.stats(sex);
+        let z = normal_quantile(percentile / 100.0);
+        (s.mean_nm + z * s.sd_nm).max(0.05 * s.mean_nm)
+    }
+
+    fn side_names(&self) -> Vec<(String, Option<TableSide>)> {
+        match &self.sides {
+            Some(sides) => sides
+                .iter()
+                .map(|s| (format!("{}{}", s.prefix(), self.joint), Some(*s)))
+                .collect(),
+            None => vec![(self.joint.clone(), None)],
+        }
     }
 }
 
@@ -150,38 +190,7 @@ impl StrengthTable {
             path: origin.into(),
             message: e.to_string(),
         })?;
-        let field = |field: &'static str, problem: String| StrengthError::Field {
-            path: origin.into(),
-            field,
-            problem,
-        };
-        let rw = &t.reference_worker;
-        if !(rw.mass_kg.is_finite() && rw.mass_kg > 0.0) {
-            return Err(field(
-                "reference_worker.mass_kg",
-                format!("must be > 0, got {}", rw.mass_kg),
-            ));
-        }
-        if rw.sex != Sex::Male {
-            return Err(field(
-                "reference_worker.sex",
-                "must be male (female_factor scales to women)".into(),
-            ));
-        }
-        if !(t.mass_exponent.is_finite() && (0.0..=2.0).contains(&t.mass_exponent)) {
-            return Err(field(
-                "mass_exponent",
-                format!("must be in [0, 2], got {}", t.mass_exponent),
-            ));
-        }
-        if !(t.coefficient_of_variation.is_finite()
-            && (0.0..=0.5).contains(&t.coefficient_of_variation))
-        {
-            return Err(field(
-                "coefficient_of_variation",
-                format!("must be in [0, 0.5], got {}", t.coefficient_of_variation),
-            ));
-        }
+        let mut seen = std::collections::HashSet::new();
         for (i, e) in t.half_joints.iter().enumerate() {
             let bad = |problem: String| StrengthError::Entry {
                 path: origin.into(),
@@ -190,23 +199,38 @@ impl StrengthTable {
                 dir: e.direction.symbol(),
                 problem,
             };
-            if !(e.mvc_nm.is_finite() && e.mvc_nm > 0.0) {
-                return Err(bad(format!("mvc_nm must be > 0, got {}", e.mvc_nm)));
+            for (sex, s) in [("male", e.male), ("female", e.female)] {
+                if !(s.mean_nm.is_finite() && s.mean_nm > 0.0 && s.mean_nm <= 5000.0) {
+                    return Err(bad(format!(
+                        "{sex}.mean_nm must be within 0..5000 N·m, got {}",
+                        s.mean_nm
+                    )));
+                }
+                if !(s.sd_nm.is_finite() && s.sd_nm >= 0.0 && s.sd_nm <= s.mean_nm) {
+                    return Err(bad(format!(
+                        "{sex}.sd_nm must be within 0..mean ({}), got {}",
+                        s.mean_nm, s.sd_nm
+                    )));
+                }
             }
-            if !(e.female_factor.is_finite() && e.female_factor > 0.0 && e.female_factor <= 1.5) {
-                return Err(bad(format!(
-                    "female_factor must be in (0, 1.5], got {}",
-                    e.female_factor
-                )));
+            for (k, c) in e.posture.iter().enumerate() {
+                let at = |what: &str| format!("posture[{k}] ({}): {what}", c.joint);
+                if c.deg.len() < 2 || c.deg.len() != c.factor.len() {
+                    return Err(bad(at(
+                        "deg and factor must have the same length, at least 2",
+                    )));
+                }
+                if !c.deg.iter().all(|x| x.is_finite()) || c.deg.windows(2).any(|w| w[1] <= w[0]) {
+                    return Err(bad(at("deg must be finite and strictly increasing")));
+                }
+                if !c.factor.iter().all(|x| x.is_finite() && *x > 0.0 && *x <= 10.0) {
+                    return Err(bad(at("factor values must be within 0..10 and > 0")));
+                }
             }
-            if e.posture_slope_per_rad.is_some_and(|s| !s.is_finite()) {
-                return Err(bad("posture_slope_per_rad must be finite".into()));
-            }
-            if t.half_joints[..i]
-                .iter()
-                .any(|o| o.joint == e.joint && o.direction == e.direction)
-            {
-                return Err(bad("is listed twice".into()));
+            for (name, _) in e.side_names() {
+                if !seen.insert((name.clone(), e.direction)) {
+                    return Err(bad(format!("{name}{} is listed twice", e.direction.symbol())));
+                }
             }
         }
         Ok(t)
@@ -215,7 +239,7 @@ impl StrengthTable {
     /// Reads a table file.
     pub fn from_file(path: &Path) -> Result<Self, StrengthError> {
         let p = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| StrengthError::Io {
+        let text = crate::io::read_text(path).map_err(|e| StrengthError::Io {
             path: p.clone(),
             message: e.to_string(),
         })?;
@@ -233,29 +257,23 @@ impl StrengthTable {
         urdf.with_extension("strength.yaml")
     }
 
-    pub fn entry(&self, joint: &str, dir: Direction) -> Option<&StrengthEntry> {
+    /// The entry for a full joint name (with side prefix) and direction, with its side.
+    pub fn entry(&self, joint: &str, dir: Direction) -> Option<(&StrengthEntry, Option<TableSide>)> {
         self.half_joints
             .iter()
-            .find(|e| e.joint == joint && e.direction == dir)
+            .filter(|e| e.direction == dir)
+            .find_map(|e| {
+                e.side_names()
+                    .into_iter()
+                    .find(|(n, _)| n == joint)
+                    .map(|(_, s)| (e, s))
+            })
     }
 
-    /// Scale factor from the reference worker to `w`.
-    pub fn worker_factor(&self, e: &StrengthEntry, w: &Worker) -> f64 {
-        let sex = if w.sex == Sex::Female {
-            e.female_factor
-        } else {
-            1.0
-        };
-        let mass = (w.mass_kg / self.reference_worker.mass_kg).powf(self.mass_exponent);
-        let z = normal_quantile(w.strength_percentile / 100.0);
-        let pct = (1.0 + z * self.coefficient_of_variation).max(0.2);
-        sex * mass * pct
-    }
-
-    /// MVC [N·m] of half-joint (`joint`, `dir`) for worker `w` at q = 0.
+    /// MVC \[N·m\] of half-joint (`joint`, `dir`) for worker `w` at the reference posture.
     pub fn mvc_nm(&self, joint: &str, dir: Direction, w: &Worker) -> Option<f64> {
         self.entry(joint, dir)
-            .map(|e| e.mvc_nm * self.worker_factor(e, w))
+            .map(|(e, _)| e.mvc_at_percentile(w.sex, w.strength_percentile))
     }
 
     /// The larger MVC of the two directions of `joint`, for `w`.
@@ -267,6 +285,90 @@ impl StrengthTable {
             (a, b) => a.or(b),
         }
     }
+
+    /// Whether a joint is listed as unactuated.
+    pub fn is_unactuated(&self, joint: &str) -> bool {
+        self.unactuated.iter().any(|j| j == joint)
+    }
+}
+
+/// A shape-preserving cubic (PCHIP, Fritsch & Carlson 1980) through `(x_i, y_i)`, constant
+/// beyond the ends. Smooth (C¹) and monotone wherever the data are.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pchip {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    d: Vec<f64>,
+}
+
+impl Pchip {
+    /// `x` strictly increasing, at least two points (checked by the table's parser).
+    pub fn new(x: Vec<f64>, y: Vec<f64>) -> Self {
+        let n = x.len();
+        let h: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+        let delta: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
+        let mut d = vec![0.0; n];
+        if n == 2 {
+            d = vec![delta[0]; 2];
+        } else {
+            for i in 1..n - 1 {
+                if delta[i - 1] * delta[i] > 0.0 {
+                    let (w1, w2) = (2.0 * h[i] + h[i - 1], h[i] + 2.0 * h[i - 1]);
+                    d[i] = (w1 + w2) / (w1 / delta[i - 1] + w2 / delta[i]);
+                }
+            }
+            let end = |h0: f64, h1: f64, d0: f64, d1: f64| {
+                let e = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+                if e * d0 <= 0.0 {
+                    0.0
+                } else if d0 * d1 <= 0.0 && e.abs() > 3.0 * d0.abs() {
+                    3.0 * d0
+                } else {
+                    e
+                }
+            };
+            d[0] = end(h[0], h[1], delta[0], delta[1]);
+            d[n - 1] = end(h[n - 2], h[n - 3], delta[n - 2], delta[n - 3]);
+        }
+        Pchip { x, y, d }
+    }
+
+    /// Value and slope at `t` (slope 0 beyond the ends, where the value is held).
+    pub fn eval(&self, t: f64) -> (f64, f64) {
+        let n = self.x.len();
+        if t.is_nan() || t <= self.x[0] {
+            return (self.y[0], 0.0);
+        }
+        if t >= self.x[n - 1] {
+            return (self.y[n - 1], 0.0);
+        }
+        let i = self.x.partition_point(|&xi| xi <= t) - 1;
+        let h = self.x[i + 1] - self.x[i];
+        let s = (t - self.x[i]) / h;
+        let (s2, s3) = (s * s, s * s * s);
+        let (h00, h10, h01, h11) = (
+            2.0 * s3 - 3.0 * s2 + 1.0,
+            s3 - 2.0 * s2 + s,
+            -2.0 * s3 + 3.0 * s2,
+            s3 - s2,
+        );
+        let v = h00 * self.y[i] + h10 * h * self.d[i] + h01 * self.y[i + 1] + h11 * h * self.d[i + 1];
+        let (d00, d10, d01, d11) = (
+            6.0 * s2 - 6.0 * s,
+            3.0 * s2 - 4.0 * s + 1.0,
+            -6.0 * s2 + 6.0 * s,
+            3.0 * s2 - 2.0 * s,
+        );
+        let dv = (d00 * self.y[i] + d01 * self.y[i + 1]) / h + d10 * self.d[i] + d11 * self.d[i + 1];
+        (v, dv)
+    }
+}
+
+/// A posture factor resolved onto a model: the q index of its joint and its curve (radians).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PostureFactor {
+    pub q_index: usize,
+    pub curve: Pchip,
 }
 
 /// A resolved half-joint of a body model for one worker.
@@ -278,58 +380,136 @@ pub struct HalfJoint {
     #[serde(skip)]
     pub q_index: usize,
     pub direction: Direction,
+    /// Muscle group in words, with the side ("right shoulder flexors").
     pub group: String,
     pub region: String,
-    /// MVC at q = 0 [N·m].
+    /// MVC at the reference posture \[N·m\] for this worker.
     pub mvc_nm: f64,
+    /// Population mean and SD of this sex at the reference posture \[N·m\] (for % capable).
+    pub population: MeanSd,
     #[serde(skip)]
-    pub posture_slope_per_rad: Option<f64>,
+    pub posture: Vec<PostureFactor>,
     pub source: String,
 }
 
 impl HalfJoint {
-    /// MVC [N·m] at joint angle `q_rad` (posture dependence, if any).
+    /// Posture factor at `q` (product of the curves) and its gradient, written into `grad`
+    /// (only the curves' joints; the caller zeroes `grad` once). Returns the factor.
+    pub fn posture_factor(&self, q_rad: &[f64]) -> f64 {
+        self.posture
+            .iter()
+            .map(|p| p.curve.eval(q_rad[p.q_index]).0)
+            .product()
+    }
+
+    /// MVC \[N·m\] at posture `q_rad`.
     #[inline]
-    pub fn mvc_at(&self, q_rad: f64) -> f64 {
-        match self.posture_slope_per_rad {
-            Some(s) => self.mvc_nm * (1.0 + s * q_rad).clamp(0.5, 1.5),
-            None => self.mvc_nm,
+    pub fn mvc_at(&self, q_rad: &[f64]) -> f64 {
+        if self.posture.is_empty() {
+            self.mvc_nm
+        } else {
+            self.mvc_nm * self.posture_factor(q_rad)
         }
     }
 
-    /// Relative load `f = max(±τ, 0) / MVC` for holding torque `tau_nm` at angle `q_rad`.
+    /// ∂MVC/∂q as (q index, value) pairs at `q_rad`.
+    pub fn mvc_gradient(&self, q_rad: &[f64], out: &mut Vec<(usize, f64)>) {
+        out.clear();
+        let vals: Vec<(f64, f64)> = self
+            .posture
+            .iter()
+            .map(|p| p.curve.eval(q_rad[p.q_index]))
+            .collect();
+        for (k, p) in self.posture.iter().enumerate() {
+            let others: f64 = vals
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| *j != k)
+                .map(|(_, v)| v.0)
+                .product();
+            out.push((p.q_index, self.mvc_nm * vals[k].1 * others));
+        }
+    }
+
+    /// Relative load `f = max(±τ, 0) / MVC(q)` for holding torque `tau_nm` at posture `q_rad`.
     #[inline]
-    pub fn load(&self, tau_nm: f64, q_rad: f64) -> f64 {
+    pub fn load(&self, tau_nm: f64, q_rad: &[f64]) -> f64 {
         (self.direction.sign() * tau_nm).max(0.0) / self.mvc_at(q_rad)
+    }
+
+    /// Whether the MVC depends on posture.
+    pub fn posture_dependent(&self) -> bool {
+        !self.posture.is_empty()
     }
 }
 
-/// Resolves the two half-joints of every moving joint of `model` for worker `w`: from the table
-/// where it has an entry, else from the URDF `<limit effort>` (said so in `source`). A moving
-/// joint with neither is an error.
+/// Resolves the two half-joints of every actuated moving joint of `model` for worker `w`: from
+/// the table where it has an entry, else from the URDF `<limit effort>` (said so in `source`).
+/// An actuated moving joint with neither is an error; so is an unactuated joint the model lacks.
 pub fn resolve_half_joints(
     model: &BodyModel,
     table: &StrengthTable,
     w: &Worker,
     origin: &str,
 ) -> Result<Vec<HalfJoint>, StrengthError> {
+    for j in &table.unactuated {
+        if model.q_index(j).is_err() {
+            return Err(StrengthError::Joint {
+                path: origin.into(),
+                joint: j.clone(),
+                problem: "is listed as unactuated but is not a moving joint of the robot".into(),
+            });
+        }
+    }
     let mut out = Vec::with_capacity(2 * model.nq());
     for q in 0..model.nq() {
         let j = model.q_joint(q);
+        if table.is_unactuated(&j.name) {
+            continue;
+        }
         for dir in [Direction::Positive, Direction::Negative] {
             let id = format!("{}{}", j.name, dir.symbol());
             let hj = match table.entry(&j.name, dir) {
-                Some(e) => HalfJoint {
-                    id,
-                    joint: j.name.clone(),
-                    q_index: q,
-                    direction: dir,
-                    group: e.group.clone(),
-                    region: e.region.clone(),
-                    mvc_nm: e.mvc_nm * table.worker_factor(e, w),
-                    posture_slope_per_rad: e.posture_slope_per_rad,
-                    source: e.source.clone(),
-                },
+                Some((e, side)) => {
+                    let mut posture = Vec::with_capacity(e.posture.len());
+                    for c in &e.posture {
+                        let name = match side {
+                            Some(s) if model.q_index(&c.joint).is_err() => {
+                                format!("{}{}", s.prefix(), c.joint)
+                            }
+                            _ => c.joint.clone(),
+                        };
+                        let qi = model.q_index(&name).map_err(|_| StrengthError::Joint {
+                            path: origin.into(),
+                            joint: j.name.clone(),
+                            problem: format!(
+                                "posture curve names joint '{name}', which the robot does not have"
+                            ),
+                        })?;
+                        posture.push(PostureFactor {
+                            q_index: qi,
+                            curve: Pchip::new(
+                                c.deg.iter().map(|d| d.to_radians()).collect(),
+                                c.factor.clone(),
+                            ),
+                        });
+                    }
+                    HalfJoint {
+                        id,
+                        joint: j.name.clone(),
+                        q_index: q,
+                        direction: dir,
+                        group: match side {
+                            Some(s) => format!("{} {}", s.word(), e.group),
+                            None => e.group.clone(),
+                        },
+                        region: e.region.clone(),
+                        mvc_nm: e.mvc_at_percentile(w.sex, w.strength_percentile),
+                        population: e.stats(w.sex),
+                        posture,
+                        source: e.source.clone(),
+                    }
+                }
                 None if j.effort > 0.0 => HalfJoint {
                     id,
                     joint: j.name.clone(),
@@ -346,18 +526,20 @@ pub fn resolve_half_joints(
                     ),
                     region: "general".into(),
                     mvc_nm: j.effort,
-                    posture_slope_per_rad: None,
+                    population: MeanSd {
+                        mean_nm: j.effort,
+                        sd_nm: 0.0,
+                    },
+                    posture: Vec::new(),
                     source:
                         "URDF <limit effort> (no strength-table entry; not scaled to the worker)"
                             .into(),
                 },
                 None => {
-                    return Err(StrengthError::Entry {
+                    return Err(StrengthError::Joint {
                         path: origin.into(),
-                        index: table.half_joints.len(),
-                        joint: j.name.clone(),
-                        dir: dir.symbol(),
-                        problem: "no strength-table entry and no URDF <limit effort> > 0".into(),
+                        joint: format!("{}{}", j.name, dir.symbol()),
+                        problem: "no strength-table entry and no URDF <limit effort> > 0 (list it under `unactuated` if it has no muscles)".into(),
                     })
                 }
             };
@@ -365,4 +547,30 @@ pub fn resolve_half_joints(
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pchip_passes_through_points_and_its_slope_matches_differences() {
+        let p = Pchip::new(vec![0.0, 1.0, 2.0, 4.0], vec![1.0, 0.8, 0.9, 0.3]);
+        for (x, y) in [(0.0, 1.0), (1.0, 0.8), (2.0, 0.9), (4.0, 0.3)] {
+            assert!((p.eval(x).0 - y).abs() < 1e-15);
+        }
+        for &t in &[0.3, 1.5, 2.7, 3.9] {
+            let h = 1e-6;
+            let fd = (p.eval(t + h).0 - p.eval(t - h).0) / (2.0 * h);
+            assert!((p.eval(t).1 - fd).abs() < 1e-6, "{t}");
+        }
+        // monotone data stay monotone between the points
+        let m = Pchip::new(vec![0.0, 1.0, 3.0], vec![0.0, 0.1, 1.0]);
+        let mut last = -1.0;
+        for i in 0..=300 {
+            let v = m.eval(i as f64 / 100.0).0;
+            assert!(v >= last);
+            last = v;
+        }
+    }
 }

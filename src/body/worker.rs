@@ -1,26 +1,40 @@
-//! The generated default worker: a standing upper body from a worker description, as URDF.
+//! The generated default worker: a standing whole body from a worker description, as URDF.
 //!
-//! Segment masses and centre-of-mass positions: de Leva (1996), J Biomech 29:1223, Table 4
-//! (Zatsiorsky–Seluyanov adjusted), CM measured from the proximal endpoint listed there.
-//! Segment lengths: de Leva's reference lengths scaled by stature / reference stature (male
-//! 1.741 m, female 1.735 m). Heights of the lumbar joint, the shoulders and the head are fractions
-//! of stature after Drillis & Contini (1966) — ASSUMPTIONS where marked, not measurements.
+//! Segments, masses and centres of mass: de Leva (1996), J Biomech 29:1223, Table 4 (adjusted
+//! Zatsiorsky–Seluyanov), lengths scaled by stature / reference stature (male 1.741 m, female
+//! 1.735 m), masses by body mass, CM measured from the proximal endpoint listed there. The trunk
+//! is de Leva's upper + middle trunk (SUPR–OMPH) above the lumbosacral joint and the lower trunk
+//! (OMPH–MIDH) as the pelvis; the head is VERT–C7 (head and neck). Heights of the ankle, of
+//! L5/S1 above the hip joint centres, of the shoulders, and the widths of hips, shoulders and
+//! feet are fractions of stature or of foot length — ASSUMPTIONS where marked (after Drillis &
+//! Contini 1966), not measurements. Joint ranges of motion: AAOS (1965), as reprinted in Greene &
+//! & Heckman (1994), see [`RANGES_DEG`] and `docs/body.md`.
 //!
-//! Frames (world at the floor between the feet): x forward, y left, z up. At q = 0 the worker
-//! stands upright, the right arm hangs with the palm facing the thigh (thumb forward).
-//! Joint signs (positive direction):
+//! Frames (world at the floor): x forward, y left, z up. At q = 0 the worker stands upright with
+//! the feet under the hip joints, legs straight, arms hanging with the palms facing the thighs
+//! (thumbs forward). The pelvis floats on six unactuated joints (`pelvis_tx/ty/tz`,
+//! `pelvis_rotation` about z, `pelvis_list` about −x, `pelvis_tilt` about y, in that order), the
+//! names of OpenSim's full-body models; the feet stand on the floor through the statics' stance
+//! (see [`crate::body::stance`]). Joint signs (positive direction), left joints mirroring right
+//! ones (x and z components of the axis negated):
 //! * `lumbar_flexion` bends the trunk forward; `lumbar_lateral_bending` to the left;
-//!   `lumbar_axial_rotation` turns the trunk to the left;
-//! * `r_shoulder_flexion` raises the arm forward; `r_shoulder_abduction` sideways (to the
-//!   right); `r_shoulder_rotation` is internal rotation;
-//! * `r_elbow_flexion` flexes; `r_forearm_pronation` pronates;
-//! * `r_wrist_flexion` flexes toward the palm; `r_wrist_deviation` is radial deviation.
+//!   `lumbar_axial_rotation` turns it to the left; `neck_*` the same for the head on the trunk;
+//! * `*_shoulder_flexion` raises the arm forward; `*_shoulder_abduction` sideways (away from the
+//!   body); `*_shoulder_rotation` is internal rotation; `*_elbow_flexion` flexes;
+//!   `*_forearm_pronation` pronates; `*_wrist_flexion` flexes toward the palm;
+//!   `*_wrist_deviation` is radial deviation;
+//! * `*_hip_flexion` raises the thigh forward; `*_hip_abduction` moves it away from the midline;
+//!   `*_hip_rotation` is internal rotation; `*_knee_flexion` flexes; `*_ankle_dorsiflexion`
+//!   lifts the toes (tilts the shank forward over a planted foot); `*_ankle_inversion` turns the
+//!   sole toward the midline.
 
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
 /// Sex of a worker, for anthropometry and strength.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Sex {
     Male,
@@ -38,11 +52,13 @@ impl Sex {
 }
 
 /// A worker description.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Worker {
     pub sex: Sex,
+    /// Stature \[m\], 1.2..2.3.
     pub stature_m: f64,
+    /// Body mass \[kg\], 30..200.
     pub mass_kg: f64,
     /// Strength percentile (1–99) of the worker's sex; 50 by default.
     #[serde(default = "default_percentile")]
@@ -91,83 +107,162 @@ impl Worker {
     }
 }
 
-/// de Leva (1996) Table 4 values for one sex: mass fraction and CM (fraction of length from the
-/// proximal endpoint); lengths \[m\] of the reference subject.
+/// One de Leva (1996) Table 4 segment: mass fraction, CM fraction of length from the proximal
+/// endpoint, length \[m\] of the reference subject.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    mass: f64,
+    cm: f64,
+    len: f64,
+}
+
+const fn seg(mass: f64, cm: f64, len: f64) -> Segment {
+    Segment { mass, cm, len }
+}
+
+/// de Leva (1996) Table 4 for one sex.
 struct DeLeva {
     ref_stature_m: f64,
-    upper_arm: (f64, f64, f64),
-    forearm: (f64, f64, f64),
-    hand: (f64, f64, f64),
-    /// Torso SUPR–MIDA: mass fraction, CM from SUPR.
-    torso: (f64, f64),
-    /// Pelvis MIDA–MIDH.
-    pelvis: (f64, f64),
-    /// Head VERT–MIDG: mass fraction, CM from vertex.
-    head: (f64, f64),
+    /// VERT–C7, CM from the vertex.
+    head: Segment,
+    /// SUPR–XIPH, CM from SUPR.
+    upper_trunk: Segment,
+    /// XIPH–OMPH, CM from XIPH.
+    middle_trunk: Segment,
+    /// OMPH–MIDH, CM from OMPH.
+    lower_trunk: Segment,
+    upper_arm: Segment,
+    forearm: Segment,
+    /// Wrist joint centre to MET3.
+    hand: Segment,
+    thigh: Segment,
+    /// Knee joint centre to lateral malleolus.
+    shank: Segment,
+    /// Heel to toe tip, CM from the heel.
+    foot: Segment,
 }
 
 const DE_LEVA_MALE: DeLeva = DeLeva {
     ref_stature_m: 1.741,
-    upper_arm: (0.0271, 0.5772, 0.2817),
-    forearm: (0.0162, 0.4574, 0.2689),
-    hand: (0.0061, 0.7900, 0.0862),
-    torso: (0.3229, 0.4166),
-    pelvis: (0.1117, 0.50),
-    head: (0.0694, 0.5976),
+    head: seg(0.0694, 0.5002, 0.2429),
+    upper_trunk: seg(0.1596, 0.2999, 0.1707),
+    middle_trunk: seg(0.1633, 0.4502, 0.2155),
+    lower_trunk: seg(0.1117, 0.6115, 0.1457),
+    upper_arm: seg(0.0271, 0.5772, 0.2817),
+    forearm: seg(0.0162, 0.4574, 0.2689),
+    hand: seg(0.0061, 0.7900, 0.0862),
+    thigh: seg(0.1416, 0.4095, 0.4222),
+    shank: seg(0.0433, 0.4459, 0.4340),
+    foot: seg(0.0137, 0.4415, 0.2581),
 };
 
 const DE_LEVA_FEMALE: DeLeva = DeLeva {
     ref_stature_m: 1.735,
-    upper_arm: (0.0255, 0.5754, 0.2751),
-    forearm: (0.0138, 0.4559, 0.2643),
-    hand: (0.0056, 0.7474, 0.0780),
-    #[allow(clippy::approx_constant)] // de Leva female torso mass fraction, not log10(2)
-    torso: (0.3010, 0.3741),
-    pelvis: (0.1247, 0.50),
-    head: (0.0668, 0.5894),
+    head: seg(0.0668, 0.4841, 0.2437),
+    upper_trunk: seg(0.1545, 0.2077, 0.1425),
+    middle_trunk: seg(0.1465, 0.4512, 0.2053),
+    lower_trunk: seg(0.1247, 0.4920, 0.1815),
+    upper_arm: seg(0.0255, 0.5754, 0.2751),
+    forearm: seg(0.0138, 0.4559, 0.2643),
+    hand: seg(0.0056, 0.7474, 0.0780),
+    thigh: seg(0.1478, 0.3612, 0.3685),
+    shank: seg(0.0481, 0.4416, 0.4323),
+    foot: seg(0.0129, 0.4014, 0.2283),
 };
 
-/// Heights and widths as fractions of stature (ASSUMPTIONS after Drillis & Contini 1966).
-mod proportions {
-    /// Lumbosacral joint (≈ mid-ASIS level).
-    pub const LUMBAR_Z: f64 = 0.56;
-    /// Suprasternale.
-    pub const SUPRASTERNALE_Z: f64 = 0.81;
-    /// Shoulder joint centres.
-    pub const SHOULDER_Z: f64 = 0.80;
+/// Proportions that de Leva's table does not give (ASSUMPTIONS, after Drillis & Contini 1966
+/// where a fraction of stature is used).
+pub mod proportions {
+    /// Lateral malleolus (ankle joint) above the floor, fraction of stature.
+    pub const ANKLE_Z: f64 = 0.039;
+    /// Hip joint centres: half their distance, fraction of stature.
+    pub const HIP_HALF_WIDTH: f64 = 0.05;
+    /// L5/S1 above the mid-hip point, fraction of the lower-trunk (OMPH–MIDH) length.
+    pub const L5S1_ABOVE_MIDH: f64 = 0.35;
+    /// Shoulder joint centres below suprasternale, fraction of stature.
+    pub const SHOULDER_BELOW_SUPR: f64 = 0.018;
+    /// Shoulder joint centres: half their distance, fraction of stature.
     pub const SHOULDER_HALF_WIDTH: f64 = 0.105;
-    /// Head: vertex at 1.0, mid-gonion at 0.87.
-    pub const HEAD_LENGTH: f64 = 0.13;
-    /// Grip centre along the hand, fraction of wrist–MET3 length.
+    /// Ankle above the foot, measured from the heel, fraction of foot length.
+    pub const ANKLE_FROM_HEEL: f64 = 0.25;
+    /// Foot breadth, fraction of foot length.
+    pub const FOOT_BREADTH: f64 = 0.38;
+    /// Grip centre along the hand, fraction of the wrist–MET3 length.
     pub const GRIP_ALONG_HAND: f64 = 0.75;
 }
 
 /// Capsule radii for a 1.755 m worker \[m\], scaled by stature (ASSUMPTIONS, for clearance only).
-const RADIUS_TRUNK: f64 = 0.13;
-const RADIUS_UPPER_ARM: f64 = 0.045;
-const RADIUS_FOREARM: f64 = 0.038;
-const RADIUS_HAND: f64 = 0.03;
-const RADIUS_HEAD: f64 = 0.10;
+mod radius {
+    pub const TRUNK: f64 = 0.11;
+    pub const PELVIS: f64 = 0.10;
+    pub const HEAD: f64 = 0.095;
+    pub const UPPER_ARM: f64 = 0.045;
+    pub const FOREARM: f64 = 0.036;
+    pub const HAND: f64 = 0.025;
+    pub const THIGH: f64 = 0.065;
+    pub const SHANK: f64 = 0.045;
+}
 
-/// Range of motion \[rad\] (ASSUMPTIONS: typical active ranges, AAOS-style tables).
-const LIMITS: [(&str, f64, f64); 10] = [
-    ("lumbar_flexion", -0.35, 1.4),
-    ("lumbar_lateral_bending", -0.5, 0.5),
-    ("lumbar_axial_rotation", -0.6, 0.6),
-    ("r_shoulder_flexion", -0.85, 3.0),
-    ("r_shoulder_abduction", -0.5, 2.6),
-    ("r_shoulder_rotation", -1.2, 1.4),
-    ("r_elbow_flexion", 0.0, 2.5),
-    ("r_forearm_pronation", -1.4, 1.4),
-    ("r_wrist_flexion", -1.2, 1.3),
-    ("r_wrist_deviation", -0.5, 0.35),
+/// Ranges of motion \[deg\] in this worker's signs: (joint without side prefix, lower, upper).
+/// AAOS (1965) *Joint Motion: Method of Measuring and Recording*, as reprinted in Greene &
+/// Heckman (1994) *The Clinical Measurement of Joint Motion*; shoulder adduction below −30° is
+/// an ASSUMPTION (the arm meets the trunk in the frontal plane). `docs/body.md` has the table.
+pub const RANGES_DEG: [(&str, f64, f64); 20] = [
+    ("lumbar_flexion", -25.0, 80.0),
+    ("lumbar_lateral_bending", -35.0, 35.0),
+    ("lumbar_axial_rotation", -45.0, 45.0),
+    ("neck_flexion", -45.0, 45.0),
+    ("neck_lateral_bending", -45.0, 45.0),
+    ("neck_axial_rotation", -60.0, 60.0),
+    ("shoulder_flexion", -60.0, 180.0),
+    ("shoulder_abduction", -30.0, 180.0),
+    ("shoulder_rotation", -90.0, 70.0),
+    ("elbow_flexion", 0.0, 150.0),
+    ("forearm_pronation", -80.0, 80.0),
+    ("wrist_flexion", -70.0, 80.0),
+    ("wrist_deviation", -30.0, 20.0),
+    ("hip_flexion", -30.0, 120.0),
+    ("hip_abduction", -30.0, 45.0),
+    ("hip_rotation", -45.0, 45.0),
+    ("knee_flexion", 0.0, 135.0),
+    ("ankle_dorsiflexion", -50.0, 20.0),
+    ("ankle_inversion", -15.0, 35.0),
+    // the pelvis' orientation on the floating base: bounds of the search, not a range of motion
+    ("pelvis_tilt", -30.0, 100.0),
 ];
 
-/// Moving joints of the default worker, in chain order.
-pub const JOINTS: [&str; 10] = [
+/// Bounds of the pelvis' floating base that are not ranges of motion: rotation \[deg\] and list
+/// \[deg\]; translations are bounded in metres by the generator (±0.6 m forward, ±0.5 m sideways,
+/// down to the floor).
+const PELVIS_ROTATION_DEG: f64 = 90.0;
+const PELVIS_LIST_DEG: f64 = 30.0;
+
+/// The range \[rad\] of a worker joint (side prefix `r_`/`l_` ignored).
+pub fn range_rad(joint: &str) -> Option<(f64, f64)> {
+    let base = joint
+        .strip_prefix("r_")
+        .or_else(|| joint.strip_prefix("l_"))
+        .unwrap_or(joint);
+    RANGES_DEG
+        .iter()
+        .find(|r| r.0 == base)
+        .map(|r| (r.1.to_radians(), r.2.to_radians()))
+}
+
+/// Moving joints of the default worker, in URDF (and q) order.
+pub const JOINTS: [&str; 38] = [
+    "pelvis_tx",
+    "pelvis_ty",
+    "pelvis_tz",
+    "pelvis_rotation",
+    "pelvis_list",
+    "pelvis_tilt",
     "lumbar_flexion",
     "lumbar_lateral_bending",
     "lumbar_axial_rotation",
+    "neck_flexion",
+    "neck_lateral_bending",
+    "neck_axial_rotation",
     "r_shoulder_flexion",
     "r_shoulder_abduction",
     "r_shoulder_rotation",
@@ -175,27 +270,87 @@ pub const JOINTS: [&str; 10] = [
     "r_forearm_pronation",
     "r_wrist_flexion",
     "r_wrist_deviation",
+    "l_shoulder_flexion",
+    "l_shoulder_abduction",
+    "l_shoulder_rotation",
+    "l_elbow_flexion",
+    "l_forearm_pronation",
+    "l_wrist_flexion",
+    "l_wrist_deviation",
+    "r_hip_flexion",
+    "r_hip_abduction",
+    "r_hip_rotation",
+    "r_knee_flexion",
+    "r_ankle_dorsiflexion",
+    "r_ankle_inversion",
+    "l_hip_flexion",
+    "l_hip_abduction",
+    "l_hip_rotation",
+    "l_knee_flexion",
+    "l_ankle_dorsiflexion",
+    "l_ankle_inversion",
 ];
 
-fn limit(name: &str) -> (f64, f64) {
-    LIMITS
-        .iter()
-        .find(|l| l.0 == name)
-        .map(|l| (l.1, l.2))
-        .expect("every worker joint has limits")
+/// The six unactuated joints of the floating pelvis.
+pub const PELVIS_JOINTS: [&str; 6] = [
+    "pelvis_tx",
+    "pelvis_ty",
+    "pelvis_tz",
+    "pelvis_rotation",
+    "pelvis_list",
+    "pelvis_tilt",
+];
+
+/// Frames the worker carries for tasks: hand grips and soles.
+pub const RIGHT_HAND_FRAME: &str = "r_hand_grip";
+pub const LEFT_HAND_FRAME: &str = "l_hand_grip";
+pub const RIGHT_FOOT_LINK: &str = "r_foot";
+pub const LEFT_FOOT_LINK: &str = "l_foot";
+
+/// Geometry of a generated worker that other parts need (stance, reports) \[m\].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WorkerGeometry {
+    pub ankle_height_m: f64,
+    pub hip_height_m: f64,
+    pub hip_half_width_m: f64,
+    pub l5s1_height_m: f64,
+    pub shoulder_height_m: f64,
+    pub shoulder_half_width_m: f64,
+    pub foot_length_m: f64,
+    pub foot_breadth_m: f64,
 }
 
 struct Urdf(String);
 
+type Capsule = (f64, [f64; 3], [f64; 3]);
+
 impl Urdf {
-    fn link(
-        &mut self,
-        name: &str,
-        mass: f64,
-        com: [f64; 3],
-        capsule: Option<(f64, f64, [f64; 3])>,
-    ) {
+    fn link(&mut self, name: &str, mass: f64, com: [f64; 3], capsule: Option<Capsule>) {
         let _ = writeln!(self.0, "  <link name=\"{name}\">");
+        self.inertial(mass, com);
+        if let Some((radius, a, b)) = capsule {
+            // A capsule as a URDF cylinder along z between a and b (posture-opt reads cylinders
+            // as capsules: same axis segment and radius).
+            let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0];
+            // rotation taking z to d: pitch about y then roll about x
+            let (roll, pitch) = if len > 0.0 {
+                let (x, y, z) = (d[0] / len, d[1] / len, d[2] / len);
+                ((-y).atan2((x * x + z * z).sqrt()), x.atan2(z))
+            } else {
+                (0.0, 0.0)
+            };
+            let _ = writeln!(
+                self.0,
+                "    <collision><origin xyz=\"{:.5} {:.5} {:.5}\" rpy=\"{roll:.6} {pitch:.6} 0\"/><geometry><cylinder radius=\"{radius:.4}\" length=\"{len:.4}\"/></geometry></collision>",
+                mid[0], mid[1], mid[2]
+            );
+        }
+        let _ = writeln!(self.0, "  </link>");
+    }
+
+    fn inertial(&mut self, mass: f64, com: [f64; 3]) {
         if mass > 0.0 {
             // Inertia does not enter statics; a small positive diagonal keeps other tools happy.
             let _ = writeln!(
@@ -204,14 +359,21 @@ impl Urdf {
                 com[0], com[1], com[2]
             );
         }
-        if let Some((radius, length, mid)) = capsule {
-            let _ = writeln!(
-                self.0,
-                "    <collision><origin xyz=\"{:.5} {:.5} {:.5}\"/><geometry><cylinder radius=\"{radius:.4}\" length=\"{length:.4}\"/></geometry></collision>",
-                mid[0], mid[1], mid[2]
-            );
-        }
+    }
+
+    fn box_link(&mut self, name: &str, mass: f64, com: [f64; 3], centre: [f64; 3], size: [f64; 3]) {
+        let _ = writeln!(self.0, "  <link name=\"{name}\">");
+        self.inertial(mass, com);
+        let _ = writeln!(
+            self.0,
+            "    <collision><origin xyz=\"{:.5} {:.5} {:.5}\"/><geometry><box size=\"{:.4} {:.4} {:.4}\"/></geometry></collision>",
+            centre[0], centre[1], centre[2], size[0], size[1], size[2]
+        );
         let _ = writeln!(self.0, "  </link>");
+    }
+
+    fn empty(&mut self, name: &str) {
+        let _ = writeln!(self.0, "  <link name=\"{name}\"/>");
     }
 
     #[allow(clippy::too_many_arguments)] // one URDF <joint> element, one argument per attribute
@@ -223,6 +385,7 @@ impl Urdf {
         child: &str,
         xyz: [f64; 3],
         axis: [f64; 3],
+        limits: (f64, f64),
         effort: f64,
     ) {
         let _ = writeln!(self.0, "  <joint name=\"{name}\" type=\"{kind}\">");
@@ -236,7 +399,6 @@ impl Urdf {
             xyz[0], xyz[1], xyz[2]
         );
         if kind != "fixed" {
-            let (lo, hi) = limit(name);
             let _ = writeln!(
                 self.0,
                 "    <axis xyz=\"{} {} {}\"/>",
@@ -244,10 +406,97 @@ impl Urdf {
             );
             let _ = writeln!(
                 self.0,
-                "    <limit lower=\"{lo}\" upper=\"{hi}\" effort=\"{effort}\" velocity=\"3\"/>"
+                "    <limit lower=\"{:.6}\" upper=\"{:.6}\" effort=\"{effort:.1}\" velocity=\"3\"/>",
+                limits.0, limits.1
             );
         }
         let _ = writeln!(self.0, "  </joint>");
+    }
+
+    /// A chain of revolute joints at one point, with massless links between them; returns the
+    /// last child's name.
+    fn revolute_chain(
+        &mut self,
+        parent: &str,
+        at: [f64; 3],
+        joints: &[(&str, [f64; 3])],
+        last_child: &str,
+        effort: &dyn Fn(&str) -> f64,
+    ) {
+        let mut from = parent.to_string();
+        for (i, (name, axis)) in joints.iter().enumerate() {
+            let child = if i + 1 == joints.len() {
+                last_child.to_string()
+            } else {
+                let c = format!("{name}_link");
+                self.empty(&c);
+                c
+            };
+            let xyz = if i == 0 { at } else { [0.0; 3] };
+            let lim = range_rad(name).expect("every worker joint has a range");
+            self.joint(name, "revolute", &from, &child, xyz, *axis, lim, effort(name));
+            from = child;
+        }
+    }
+}
+
+/// Side of an arm or leg: the prefix and the mirror sign of y.
+#[derive(Clone, Copy)]
+enum Side {
+    Right,
+    Left,
+}
+
+impl Side {
+    fn prefix(self) -> &'static str {
+        match self {
+            Side::Right => "r_",
+            Side::Left => "l_",
+        }
+    }
+    /// +1 for left (y > 0), −1 for right.
+    fn y(self) -> f64 {
+        match self {
+            Side::Right => -1.0,
+            Side::Left => 1.0,
+        }
+    }
+    /// Mirror of a right-side axis: x and z components negated for the left side.
+    fn axis(self, right: [f64; 3]) -> [f64; 3] {
+        match self {
+            Side::Right => right,
+            Side::Left => [-right[0], right[1], -right[2]],
+        }
+    }
+}
+
+/// The geometry of a worker (lengths and heights \[m\]).
+pub fn worker_geometry(w: &Worker) -> WorkerGeometry {
+    let d = de_leva(w.sex);
+    let h = w.stature_m;
+    let s = h / d.ref_stature_m;
+    use proportions::*;
+    let ankle = ANKLE_Z * h;
+    let hip = ankle + (d.shank.len + d.thigh.len) * s;
+    let l5s1 = hip + L5S1_ABOVE_MIDH * d.lower_trunk.len * s;
+    let supr = hip + (d.lower_trunk.len + d.middle_trunk.len + d.upper_trunk.len) * s;
+    let foot = d.foot.len * s;
+    WorkerGeometry {
+        ankle_height_m: ankle,
+        hip_height_m: hip,
+        hip_half_width_m: HIP_HALF_WIDTH * h,
+        l5s1_height_m: l5s1,
+        shoulder_height_m: supr - SHOULDER_BELOW_SUPR * h,
+        shoulder_half_width_m: SHOULDER_HALF_WIDTH * h,
+        foot_length_m: foot,
+        foot_breadth_m: FOOT_BREADTH * foot,
+    }
+}
+
+fn de_leva(sex: Sex) -> &'static DeLeva {
+    match sex {
+        Sex::Male => &DE_LEVA_MALE,
+        Sex::Female => &DE_LEVA_FEMALE,
     }
 }
 
@@ -258,224 +507,293 @@ pub fn worker_urdf(
     strength: &super::strength::StrengthTable,
 ) -> Result<String, WorkerError> {
     w.validate()?;
-    let d = match w.sex {
-        Sex::Male => &DE_LEVA_MALE,
-        Sex::Female => &DE_LEVA_FEMALE,
-    };
+    let d = de_leva(w.sex);
     let h = w.stature_m;
     let m = w.mass_kg;
     let s = h / d.ref_stature_m;
     let r = h / 1.755;
-    let (lua, lfa, lh) = (d.upper_arm.2 * s, d.forearm.2 * s, d.hand.2 * s);
-    use proportions::*;
-    let trunk_len = (SUPRASTERNALE_Z - LUMBAR_Z) * h;
-    let shoulder_dz = (SHOULDER_Z - LUMBAR_Z) * h;
-    let sh_y = SHOULDER_HALF_WIDTH * h;
+    let g = worker_geometry(w);
     let effort = |j: &str| strength.max_mvc_nm(j, w).unwrap_or(0.0);
 
     let mut u = Urdf(String::new());
     let _ = writeln!(u.0, "<?xml version=\"1.0\"?>");
     let _ = writeln!(
         u.0,
-        "<!-- Generated by posture-opt: {:?}, stature {h} m, mass {m} kg, strength percentile {}.\n     de Leva (1996) segment parameters; see src/body/worker.rs for sources and assumptions. -->",
-        w.sex, w.strength_percentile
+        "<!-- Generated by posture-opt: {}, stature {h} m, mass {m} kg, strength percentile {}.\n     de Leva (1996) segment parameters; sources and assumptions in docs/body.md. -->",
+        w.sex.name(),
+        w.strength_percentile
     );
     let _ = writeln!(u.0, "<robot name=\"worker\">");
-    u.link("floor", 0.0, [0.0; 3], None);
-    // Pelvis (below the lumbar joint: its mass loads no modelled joint).
-    let pelvis_len = 0.09 * h; // MIDA–MIDH, ASSUMPTION
-    u.link(
-        "pelvis",
-        d.pelvis.0 * m,
-        [0.0, 0.0, -d.pelvis.1 * pelvis_len],
-        None,
-    );
-    u.joint(
-        "floor_to_pelvis",
-        "fixed",
-        "floor",
-        "pelvis",
-        [0.0, 0.0, LUMBAR_Z * h],
-        [0.0; 3],
-        0.0,
-    );
-    u.link("lumbar_1", 0.0, [0.0; 3], None);
-    u.link("lumbar_2", 0.0, [0.0; 3], None);
-    u.joint(
-        "lumbar_flexion",
-        "revolute",
-        "pelvis",
-        "lumbar_1",
-        [0.0; 3],
-        [0.0, 1.0, 0.0],
-        effort("lumbar_flexion"),
-    );
-    u.joint(
-        "lumbar_lateral_bending",
-        "revolute",
-        "lumbar_1",
-        "lumbar_2",
-        [0.0; 3],
-        [-1.0, 0.0, 0.0],
-        effort("lumbar_lateral_bending"),
-    );
-    // Torso SUPR–MIDA, CM measured from SUPR.
-    let torso_com_z = trunk_len * (1.0 - d.torso.1);
+    // Floating pelvis: three translations, then yaw, list and tilt.
+    u.empty("floor");
+    let pelvis_chain: [(&str, &str, [f64; 3], (f64, f64)); 6] = [
+        ("pelvis_tx", "prismatic", [1.0, 0.0, 0.0], (-0.6, 0.6)),
+        ("pelvis_ty", "prismatic", [0.0, 1.0, 0.0], (-0.5, 0.5)),
+        ("pelvis_tz", "prismatic", [0.0, 0.0, 1.0], (-g.hip_height_m, 0.05)),
+        (
+            "pelvis_rotation",
+            "revolute",
+            [0.0, 0.0, 1.0],
+            (
+                -PELVIS_ROTATION_DEG.to_radians(),
+                PELVIS_ROTATION_DEG.to_radians(),
+            ),
+        ),
+        (
+            "pelvis_list",
+            "revolute",
+            [-1.0, 0.0, 0.0],
+            (-PELVIS_LIST_DEG.to_radians(), PELVIS_LIST_DEG.to_radians()),
+        ),
+        (
+            "pelvis_tilt",
+            "revolute",
+            [0.0, 1.0, 0.0],
+            range_rad("pelvis_tilt").expect("pelvis tilt bounds"),
+        ),
+    ];
+    let mut parent = "floor".to_string();
+    for (i, (name, kind, axis, lim)) in pelvis_chain.iter().enumerate() {
+        let child = if i == 5 {
+            "pelvis".to_string()
+        } else {
+            format!("{name}_link")
+        };
+        if i < 5 {
+            u.empty(&child);
+        } else {
+            // lower trunk (OMPH–MIDH), CM from OMPH; the pelvis frame is at mid-hip
+            let lt = d.lower_trunk;
+            let com_z = (1.0 - lt.cm) * lt.len * s;
+            u.link(
+                "pelvis",
+                lt.mass * m,
+                [0.0, 0.0, com_z],
+                Some((
+                    radius::PELVIS * r,
+                    [0.0, g.hip_half_width_m * 0.6, com_z],
+                    [0.0, -g.hip_half_width_m * 0.6, com_z],
+                )),
+            );
+        }
+        let xyz = if i == 2 {
+            [0.0, 0.0, g.hip_height_m]
+        } else {
+            [0.0; 3]
+        };
+        u.joint(name, kind, &parent, &child, xyz, *axis, *lim, 0.0);
+        parent = child;
+    }
+
+    // Trunk: upper + middle trunk above L5/S1.
+    let l5s1_dz = g.l5s1_height_m - g.hip_height_m;
+    let (ut, mt) = (d.upper_trunk, d.middle_trunk);
+    let omph = (d.lower_trunk.len * s) - l5s1_dz; // above L5/S1
+    let xiph = omph + mt.len * s;
+    let supr = xiph + ut.len * s;
+    let mt_com = xiph - mt.cm * mt.len * s;
+    let ut_com = supr - ut.cm * ut.len * s;
+    let trunk_mass = (ut.mass + mt.mass) * m;
+    let trunk_com = (ut.mass * ut_com + mt.mass * mt_com) / (ut.mass + mt.mass);
     u.link(
         "trunk",
-        d.torso.0 * m,
-        [0.0, 0.0, torso_com_z],
-        Some((RADIUS_TRUNK * r, trunk_len, [0.0, 0.0, trunk_len / 2.0])),
-    );
-    u.joint(
-        "lumbar_axial_rotation",
-        "revolute",
-        "lumbar_2",
-        "trunk",
-        [0.0; 3],
-        [0.0, 0.0, 1.0],
-        effort("lumbar_axial_rotation"),
-    );
-    // Head and neck, rigid on the trunk; CM from the vertex.
-    let head_base = (1.0 - HEAD_LENGTH - LUMBAR_Z) * h;
-    let head_com = HEAD_LENGTH * h * (1.0 - d.head.1);
-    u.link(
-        "head",
-        d.head.0 * m,
-        [0.0, 0.0, head_com],
+        trunk_mass,
+        [0.0, 0.0, trunk_com],
         Some((
-            RADIUS_HEAD * r,
-            (HEAD_LENGTH * h - 2.0 * RADIUS_HEAD * r).max(0.01),
-            [0.0, 0.0, HEAD_LENGTH * h / 2.0],
+            radius::TRUNK * r,
+            [0.0, 0.0, 0.05 * h],
+            [0.0, 0.0, supr - 0.06 * h],
         )),
     );
-    u.joint(
-        "neck_fixed",
-        "fixed",
+    u.revolute_chain(
+        "pelvis",
+        [0.0, 0.0, l5s1_dz],
+        &[
+            ("lumbar_flexion", [0.0, 1.0, 0.0]),
+            ("lumbar_lateral_bending", [-1.0, 0.0, 0.0]),
+            ("lumbar_axial_rotation", [0.0, 0.0, 1.0]),
+        ],
         "trunk",
+        &effort,
+    );
+
+    // Head and neck (VERT–C7), CM from the vertex; the neck joint at C7.
+    let hd = d.head;
+    let c7_above_l5s1 = (h - hd.len * s) - g.l5s1_height_m;
+    let head_len = hd.len * s;
+    u.link(
         "head",
-        [0.0, 0.0, head_base],
-        [0.0; 3],
-        0.0,
+        hd.mass * m,
+        [0.0, 0.0, head_len * (1.0 - hd.cm)],
+        Some((
+            radius::HEAD * r,
+            [0.0, 0.0, head_len * 0.45],
+            [0.0, 0.0, (head_len - radius::HEAD * r).max(head_len * 0.45)],
+        )),
     );
-    // Left arm hanging at the side: one rigid body with the combined mass and CM.
-    let (mu, mf, mh) = (d.upper_arm.0 * m, d.forearm.0 * m, d.hand.0 * m);
-    let left_com = -(mu * d.upper_arm.1 * lua
-        + mf * (lua + d.forearm.1 * lfa)
-        + mh * (lua + lfa + d.hand.1 * lh))
-        / (mu + mf + mh);
-    let arm_len = lua + lfa + lh;
-    u.link(
-        "l_arm",
-        mu + mf + mh,
-        [0.0, 0.0, left_com],
-        Some((RADIUS_FOREARM * r, arm_len, [0.0, 0.0, -arm_len / 2.0])),
-    );
-    u.joint(
-        "l_shoulder_fixed",
-        "fixed",
+    u.revolute_chain(
         "trunk",
-        "l_arm",
-        [0.0, sh_y, shoulder_dz],
-        [0.0; 3],
-        0.0,
+        [0.0, 0.0, c7_above_l5s1],
+        &[
+            ("neck_flexion", [0.0, 1.0, 0.0]),
+            ("neck_lateral_bending", [-1.0, 0.0, 0.0]),
+            ("neck_axial_rotation", [0.0, 0.0, 1.0]),
+        ],
+        "head",
+        &effort,
     );
-    // Right arm.
-    u.link("r_shoulder_1", 0.0, [0.0; 3], None);
-    u.link("r_shoulder_2", 0.0, [0.0; 3], None);
-    u.joint(
-        "r_shoulder_flexion",
-        "revolute",
-        "trunk",
-        "r_shoulder_1",
-        [0.0, -sh_y, shoulder_dz],
-        [0.0, -1.0, 0.0],
-        effort("r_shoulder_flexion"),
-    );
-    u.joint(
-        "r_shoulder_abduction",
-        "revolute",
-        "r_shoulder_1",
-        "r_shoulder_2",
-        [0.0; 3],
-        [-1.0, 0.0, 0.0],
-        effort("r_shoulder_abduction"),
-    );
-    u.link(
-        "r_upper_arm",
-        mu,
-        [0.0, 0.0, -d.upper_arm.1 * lua],
-        Some((RADIUS_UPPER_ARM * r, lua, [0.0, 0.0, -lua / 2.0])),
-    );
-    u.joint(
-        "r_shoulder_rotation",
-        "revolute",
-        "r_shoulder_2",
-        "r_upper_arm",
-        [0.0; 3],
-        [0.0, 0.0, 1.0],
-        effort("r_shoulder_rotation"),
-    );
-    u.link("r_elbow", 0.0, [0.0; 3], None);
-    u.joint(
-        "r_elbow_flexion",
-        "revolute",
-        "r_upper_arm",
-        "r_elbow",
-        [0.0, 0.0, -lua],
-        [0.0, -1.0, 0.0],
-        effort("r_elbow_flexion"),
-    );
-    u.link(
-        "r_forearm",
-        mf,
-        [0.0, 0.0, -d.forearm.1 * lfa],
-        Some((RADIUS_FOREARM * r, lfa, [0.0, 0.0, -lfa / 2.0])),
-    );
-    u.joint(
-        "r_forearm_pronation",
-        "revolute",
-        "r_elbow",
-        "r_forearm",
-        [0.0; 3],
-        [0.0, 0.0, 1.0],
-        effort("r_forearm_pronation"),
-    );
-    u.link("r_wrist", 0.0, [0.0; 3], None);
-    u.joint(
-        "r_wrist_flexion",
-        "revolute",
-        "r_forearm",
-        "r_wrist",
-        [0.0, 0.0, -lfa],
-        [1.0, 0.0, 0.0],
-        effort("r_wrist_flexion"),
-    );
-    u.link(
-        "r_hand",
-        mh,
-        [0.0, 0.0, -d.hand.1 * lh],
-        Some((RADIUS_HAND * r, lh, [0.0, 0.0, -lh / 2.0])),
-    );
-    u.joint(
-        "r_wrist_deviation",
-        "revolute",
-        "r_wrist",
-        "r_hand",
-        [0.0; 3],
-        [0.0, -1.0, 0.0],
-        effort("r_wrist_deviation"),
-    );
-    u.link("hand_grip", 0.0, [0.0; 3], None);
-    u.joint(
-        "hand_grip_fixed",
-        "fixed",
-        "r_hand",
-        "hand_grip",
-        [0.0, 0.0, -GRIP_ALONG_HAND * lh],
-        [0.0; 3],
-        0.0,
-    );
+
+    // Arms.
+    let (ua, fa, hand) = (d.upper_arm, d.forearm, d.hand);
+    let (lua, lfa, lh) = (ua.len * s, fa.len * s, hand.len * s);
+    let shoulder_dz = g.shoulder_height_m - g.l5s1_height_m;
+    for side in [Side::Right, Side::Left] {
+        let p = side.prefix();
+        let n = |j: &str| format!("{p}{j}");
+        let upper = n("upper_arm");
+        u.link(
+            &upper,
+            ua.mass * m,
+            [0.0, 0.0, -ua.cm * lua],
+            Some((radius::UPPER_ARM * r, [0.0; 3], [0.0, 0.0, -lua])),
+        );
+        let names = [
+            n("shoulder_flexion"),
+            n("shoulder_abduction"),
+            n("shoulder_rotation"),
+        ];
+        u.revolute_chain(
+            "trunk",
+            [0.0, side.y() * g.shoulder_half_width_m, shoulder_dz],
+            &[
+                (&names[0], side.axis([0.0, -1.0, 0.0])),
+                (&names[1], side.axis([-1.0, 0.0, 0.0])),
+                (&names[2], side.axis([0.0, 0.0, 1.0])),
+            ],
+            &upper,
+            &effort,
+        );
+        let forearm = n("forearm");
+        u.link(
+            &forearm,
+            fa.mass * m,
+            [0.0, 0.0, -fa.cm * lfa],
+            Some((radius::FOREARM * r, [0.0; 3], [0.0, 0.0, -lfa])),
+        );
+        let elbow = [n("elbow_flexion"), n("forearm_pronation")];
+        u.revolute_chain(
+            &upper,
+            [0.0, 0.0, -lua],
+            &[
+                (&elbow[0], side.axis([0.0, -1.0, 0.0])),
+                (&elbow[1], side.axis([0.0, 0.0, 1.0])),
+            ],
+            &forearm,
+            &effort,
+        );
+        let hand_link = n("hand");
+        u.link(
+            &hand_link,
+            hand.mass * m,
+            [0.0, 0.0, -hand.cm * lh],
+            Some((radius::HAND * r, [0.0; 3], [0.0, 0.0, -lh])),
+        );
+        let wrist = [n("wrist_flexion"), n("wrist_deviation")];
+        u.revolute_chain(
+            &forearm,
+            [0.0, 0.0, -lfa],
+            &[
+                (&wrist[0], side.axis([1.0, 0.0, 0.0])),
+                (&wrist[1], side.axis([0.0, -1.0, 0.0])),
+            ],
+            &hand_link,
+            &effort,
+        );
+        let grip = n("hand_grip");
+        u.empty(&grip);
+        u.joint(
+            &format!("{grip}_fixed"),
+            "fixed",
+            &hand_link,
+            &grip,
+            [0.0, 0.0, -proportions::GRIP_ALONG_HAND * lh],
+            [0.0; 3],
+            (0.0, 0.0),
+            0.0,
+        );
+    }
+
+    // Legs.
+    let (th, sh, ft) = (d.thigh, d.shank, d.foot);
+    let (lth, lsh, lft) = (th.len * s, sh.len * s, ft.len * s);
+    let ankle = g.ankle_height_m;
+    for side in [Side::Right, Side::Left] {
+        let p = side.prefix();
+        let n = |j: &str| format!("{p}{j}");
+        let thigh = n("thigh");
+        u.link(
+            &thigh,
+            th.mass * m,
+            [0.0, 0.0, -th.cm * lth],
+            Some((
+                radius::THIGH * r,
+                [0.0, 0.0, -0.12 * lth],
+                [0.0, 0.0, -0.9 * lth],
+            )),
+        );
+        let hip = [n("hip_flexion"), n("hip_abduction"), n("hip_rotation")];
+        u.revolute_chain(
+            "pelvis",
+            [0.0, side.y() * g.hip_half_width_m, 0.0],
+            &[
+                (&hip[0], side.axis([0.0, -1.0, 0.0])),
+                (&hip[1], side.axis([-1.0, 0.0, 0.0])),
+                (&hip[2], side.axis([0.0, 0.0, 1.0])),
+            ],
+            &thigh,
+            &effort,
+        );
+        let shank = n("shank");
+        u.link(
+            &shank,
+            sh.mass * m,
+            [0.0, 0.0, -sh.cm * lsh],
+            Some((
+                radius::SHANK * r,
+                [0.0, 0.0, -0.08 * lsh],
+                [0.0, 0.0, -0.85 * lsh],
+            )),
+        );
+        let knee = n("knee_flexion");
+        u.revolute_chain(
+            &thigh,
+            [0.0, 0.0, -lth],
+            &[(&knee, side.axis([0.0, 1.0, 0.0]))],
+            &shank,
+            &effort,
+        );
+        // Foot: a box from the heel to the toe tip, from the sole up to the ankle; CM from the heel.
+        let foot = n("foot");
+        let heel_x = -proportions::ANKLE_FROM_HEEL * lft;
+        u.box_link(
+            &foot,
+            ft.mass * m,
+            [heel_x + ft.cm * lft, 0.0, -ankle / 2.0],
+            [heel_x + lft / 2.0, 0.0, -ankle / 2.0],
+            [lft, g.foot_breadth_m, ankle],
+        );
+        let ank = [n("ankle_dorsiflexion"), n("ankle_inversion")];
+        u.revolute_chain(
+            &shank,
+            [0.0, 0.0, -lsh],
+            &[
+                (&ank[0], side.axis([0.0, -1.0, 0.0])),
+                (&ank[1], side.axis([1.0, 0.0, 0.0])),
+            ],
+            &foot,
+            &effort,
+        );
+    }
     let _ = writeln!(u.0, "</robot>");
     Ok(u.0)
 }

@@ -11,6 +11,7 @@ pub mod dual;
 pub mod held_load;
 pub mod ma;
 pub mod met_models;
+pub mod params;
 pub mod schedule;
 pub mod stats;
 pub mod three_compartment;

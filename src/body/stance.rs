@@ -1,0 +1,308 @@
+//! Standing on both feet: where the feet are, how the floor shares the load between them, the
+//! centre of pressure and the balance margin.
+//!
+//! A body with a floating base (unactuated root joints) stands when the floor's reactions at
+//! the two soles balance gravity and the hand loads. Two feet make the reaction statically
+//! indeterminate; posture-opt splits it **by where the centre of pressure lies between the
+//! feet**, as 3DSSPP does:
+//!
+//! 1. the total reaction `(F, M)` about the world origin is minus the sum of gravity and the hand
+//!    loads; its centre of pressure on the floor is `p = (−M_y/F_z, M_x/F_z)` and the free moment
+//!    about the vertical `T = M_z − (p × F)_z`;
+//! 2. `s`, the share of the left foot, is the position of `p` projected on the segment from the
+//!    right sole centre `c_R` to the left one `c_L` (clamped to 0..1) — the lever rule of a beam on
+//!    two supports;
+//! 3. each foot carries its share of the force and of the free moment, at its own centre of
+//!    pressure `c_i + δ`, where `δ = p − (s c_L + (1 − s) c_R)` is the part of `p` off that segment.
+//!
+//! The reactions then balance the body exactly (`Σ` forces and moments vanish), so the torques
+//! of the unactuated root joints are zero — a check the tests make against Pinocchio's inverse
+//! dynamics with the same foot forces. Balance: `p` must lie inside the support polygon, the convex
+//! hull of both soles, by a margin. For loads that hang from the hands (`F` vertical) `p` is the
+//! floor projection of the centre of mass of body and load together.
+
+use super::model::{BodyError, BodyModel};
+use super::statics::{PointLoad, StaticsData};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector2, Vector3};
+
+/// A foot: its link and the sole, the bottom face of the link's collision box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Foot {
+    pub link: usize,
+    /// Sole centre in the link frame (bottom face of the box).
+    pub sole_center_in_link_m: Vector3<f64>,
+    pub half_length_m: f64,
+    pub half_width_m: f64,
+}
+
+impl Foot {
+    /// The foot of link `name`: its first collision box, whose bottom face (in the link frame at
+    /// q = 0, z down) is the sole.
+    pub fn from_link(model: &BodyModel, name: &str) -> Result<Self, BodyError> {
+        let link = model.frame_link(name)?;
+        let b = model.links[link]
+            .boxes
+            .first()
+            .ok_or_else(|| BodyError::Invalid {
+                path: model.name.clone(),
+                element: format!("link '{name}'"),
+                problem: "a foot needs a <collision> box: its bottom face is the sole".into(),
+            })?;
+        let c = b.link_from_box * Point3::new(0.0, 0.0, -b.half_extents_m.z);
+        Ok(Foot {
+            link,
+            sole_center_in_link_m: c.coords,
+            half_length_m: b.half_extents_m.x,
+            half_width_m: b.half_extents_m.y,
+        })
+    }
+}
+
+/// Where the two feet stand: their target poses (sole centre frames, z up) and the support
+/// polygon. Index 0 is the left foot, 1 the right.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stance {
+    pub feet: [Foot; 2],
+    /// World pose of each foot's link frame when standing (flat, on the floor).
+    pub world_from_foot: [Isometry3<f64>; 2],
+    /// Support polygon (convex hull of both soles), counter-clockwise, world x-y \[m\].
+    pub support_polygon_m: Vec<Vector2<f64>>,
+}
+
+impl Stance {
+    /// Feet flat on the floor, the left and right sole centres at `(forward_m, ±width_m/2, 0)`,
+    /// each turned outward by `toe_out_rad`.
+    pub fn new(feet: [Foot; 2], width_m: f64, forward_m: f64, toe_out_rad: f64) -> Self {
+        let mut world_from_foot = [Isometry3::identity(); 2];
+        let mut corners = Vec::with_capacity(8);
+        for (i, f) in feet.iter().enumerate() {
+            let side = if i == 0 { 1.0 } else { -1.0 };
+            let rot = UnitQuaternion::from_euler_angles(0.0, 0.0, side * toe_out_rad);
+            let sole_w = Vector3::new(forward_m, side * width_m / 2.0, 0.0);
+            // link origin so that the sole centre lands on sole_w
+            let origin = sole_w - rot * f.sole_center_in_link_m;
+            world_from_foot[i] = Isometry3::from_parts(Translation3::from(origin), rot);
+            for (dx, dy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, -1.0), (-1.0, 1.0)] {
+                let c = sole_w + rot * Vector3::new(dx * f.half_length_m, dy * f.half_width_m, 0.0);
+                corners.push(Vector2::new(c.x, c.y));
+            }
+        }
+        Stance {
+            feet,
+            world_from_foot,
+            support_polygon_m: convex_hull(corners),
+        }
+    }
+
+    /// Signed distance \[m\] of point `p` from the support polygon's boundary: positive inside.
+    pub fn margin_m(&self, p: &Vector2<f64>) -> f64 {
+        self.edges()
+            .map(|(n, d)| d - n.dot(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The polygon's edges as (outward unit normal n, offset d): inside means `n·p ≤ d`.
+    pub fn edges(&self) -> impl Iterator<Item = (Vector2<f64>, f64)> + '_ {
+        let v = &self.support_polygon_m;
+        (0..v.len()).map(move |i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let t = (b - a).normalize();
+            let n = Vector2::new(t.y, -t.x);
+            (n, n.dot(&a))
+        })
+    }
+}
+
+/// Counter-clockwise convex hull (Andrew's monotone chain).
+fn convex_hull(mut pts: Vec<Vector2<f64>>) -> Vec<Vector2<f64>> {
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup_by(|a, b| (*a - *b).norm() < 1e-12);
+    if pts.len() < 3 {
+        return pts;
+    }
+    let cross = |o: &Vector2<f64>, a: &Vector2<f64>, b: &Vector2<f64>| {
+        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+    };
+    let mut hull: Vec<Vector2<f64>> = Vec::with_capacity(2 * pts.len());
+    for p in &pts {
+        while hull.len() >= 2 && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0 {
+            hull.pop();
+        }
+        hull.push(*p);
+    }
+    let lower = hull.len() + 1;
+    for p in pts.iter().rev().skip(1) {
+        while hull.len() >= lower && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0 {
+            hull.pop();
+        }
+        hull.push(*p);
+    }
+    hull.pop();
+    hull
+}
+
+/// The floor's reaction on both feet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GroundReaction {
+    /// Force on each foot (left, right) \[N\], world axes.
+    pub force_n: [Vector3<f64>; 2],
+    /// Each foot's centre of pressure on the floor \[m\].
+    pub cop_m: [Vector3<f64>; 2],
+    /// Each foot's free moment about the vertical \[N·m\].
+    pub free_moment_nm: [f64; 2],
+    /// Centre of pressure of the whole reaction \[m\] (floor plane).
+    pub cop_total_m: Vector2<f64>,
+    /// Share of the vertical load on the left foot, 0..1.
+    pub left_share: f64,
+    /// Balance margin: distance of the centre of pressure inside the support polygon \[m\]
+    /// (negative: outside).
+    pub margin_m: f64,
+    /// False when the loads lift the body (no upward reaction): no stance can hold it.
+    pub supported: bool,
+}
+
+/// The non-ground loads' resultant about the world origin: gravity on the whole body (after
+/// [`super::statics::mass_moments`]) and the `hands`' loads (world points from `data`).
+pub fn external_resultant(
+    model: &BodyModel,
+    data: &StaticsData,
+    hands: &[PointLoad],
+    gravity_m_s2: &Vector3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let m = model.mass_kg;
+    let mut f = m * gravity_m_s2;
+    let mut mo = (m * data.com_m).cross(gravity_m_s2);
+    for h in hands {
+        let p = data.link_point(model, h.link, &h.point_in_link_m);
+        f += h.force_n;
+        mo += p.cross(&h.force_n) + h.moment_nm;
+    }
+    (f, mo)
+}
+
+/// Splits the floor's reaction between the feet (see the module docs). Needs forward kinematics
+/// and mass moments in `data`.
+pub fn ground_reaction(
+    model: &BodyModel,
+    data: &StaticsData,
+    stance: &Stance,
+    hands: &[PointLoad],
+    gravity_m_s2: &Vector3<f64>,
+) -> GroundReaction {
+    let (f_ext, m_ext) = external_resultant(model, data, hands, gravity_m_s2);
+    let (fg, mg) = (-f_ext, -m_ext);
+    let sole = |i: usize| {
+        let f = &stance.feet[i];
+        data.link_point(model, f.link, &f.sole_center_in_link_m)
+    };
+    let (cl, cr) = (sole(0), sole(1));
+    let (cl2, cr2) = (Vector2::new(cl.x, cl.y), Vector2::new(cr.x, cr.y));
+    let supported = fg.z > 1e-9 * f_ext.norm().max(1.0);
+    let p = if supported {
+        Vector2::new(-mg.y / fg.z, mg.x / fg.z)
+    } else {
+        (cl2 + cr2) / 2.0
+    };
+    let t_z = mg.z - (p.x * fg.y - p.y * fg.x);
+    let lr = cl2 - cr2;
+    let s = if lr.norm_squared() > 0.0 {
+        ((p - cr2).dot(&lr) / lr.norm_squared()).clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    let delta = p - (s * cl2 + (1.0 - s) * cr2);
+    let shares = [s, 1.0 - s];
+    let cop = [
+        Vector3::new(cl.x + delta.x, cl.y + delta.y, 0.0),
+        Vector3::new(cr.x + delta.x, cr.y + delta.y, 0.0),
+    ];
+    GroundReaction {
+        force_n: [shares[0] * fg, shares[1] * fg],
+        cop_m: cop,
+        free_moment_nm: [shares[0] * t_z, shares[1] * t_z],
+        cop_total_m: p,
+        left_share: s,
+        margin_m: stance.margin_m(&p),
+        supported,
+    }
+}
+
+/// The two foot reactions as point loads on the foot links, for the statics.
+pub fn foot_loads(
+    model: &BodyModel,
+    data: &StaticsData,
+    stance: &Stance,
+    r: &GroundReaction,
+) -> [PointLoad; 2] {
+    let load = |i: usize| {
+        let link = stance.feet[i].link;
+        let (rot, pos) = data.link_pose(model, link);
+        PointLoad {
+            link,
+            point_in_link_m: rot.transpose() * (r.cop_m[i] - pos),
+            force_n: r.force_n[i],
+            moment_nm: Vector3::new(0.0, 0.0, r.free_moment_nm[i]),
+        }
+    };
+    [load(0), load(1)]
+}
+
+/// d(centre of pressure)/dq (2×nq, into `out`) for fixed hand forces: from the centre of mass's
+/// and the hands' Jacobians. Needs `data` after the statics; `jac` is scratch (3×nq).
+pub fn cop_jacobian(
+    model: &BodyModel,
+    data: &StaticsData,
+    hands: &[PointLoad],
+    gravity_m_s2: &Vector3<f64>,
+    jac: &mut nalgebra::Matrix3xX<f64>,
+    out: &mut nalgebra::Matrix2xX<f64>,
+) {
+    let (f_ext, _) = external_resultant(model, data, hands, gravity_m_s2);
+    let fz = -f_ext.z;
+    let m = model.mass_kg;
+    let nq = model.nq();
+    // dM_g/dq_k = −(M J_com,k × g + Σ_h J_h,k × F_h)
+    let mut dmg = nalgebra::Matrix3xX::<f64>::zeros(nq);
+    for k in 0..nq {
+        let c = data.com_jacobian.column(k).into_owned();
+        let col = -(m * c).cross(gravity_m_s2);
+        dmg.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+    }
+    for h in hands {
+        let p = data.link_point(model, h.link, &h.point_in_link_m);
+        data.point_jacobian(model, h.link, &p, jac);
+        for k in 0..nq {
+            let c = jac.column(k).into_owned();
+            let col = dmg.column(k).into_owned() - c.cross(&h.force_n);
+            dmg.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+        }
+    }
+    for k in 0..nq {
+        out[(0, k)] = -dmg[(1, k)] / fz;
+        out[(1, k)] = dmg[(0, k)] / fz;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hull_of_two_feet_and_margins() {
+        let foot = Foot {
+            link: 0,
+            sole_center_in_link_m: Vector3::new(0.05, 0.0, -0.07),
+            half_length_m: 0.13,
+            half_width_m: 0.05,
+        };
+        let s = Stance::new([foot, foot], 0.3, 0.0, 0.0);
+        // a rectangle from x −0.13..0.13, y −0.2..0.2
+        assert_eq!(s.support_polygon_m.len(), 4);
+        assert!((s.margin_m(&Vector2::new(0.0, 0.0)) - 0.13).abs() < 1e-12);
+        assert!((s.margin_m(&Vector2::new(0.0, 0.19)) - 0.01).abs() < 1e-12);
+        assert!((s.margin_m(&Vector2::new(0.2, 0.0)) + 0.07).abs() < 1e-12);
+        // the left foot's link sits so that its sole centre is at (0, 0.15, 0)
+        let p = s.world_from_foot[0] * Point3::from(foot.sole_center_in_link_m);
+        assert!((p.coords - Vector3::new(0.0, 0.15, 0.0)).norm() < 1e-12);
+    }
+}

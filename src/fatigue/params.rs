@@ -1,0 +1,192 @@
+//! Named fatigue parameter sets: k per body region and the recovery form, with sources and the
+//! ranges the uncertainty analysis varies. The sets ship in `data/fatigue_sets.yaml`
+//! (documented in `docs/fatigue-parameters.md`).
+
+use super::ma::{FatigueError, MaParams, Recovery};
+use crate::body::Sex;
+use serde::{Deserialize, Serialize};
+
+/// The shipped sets.
+pub const SETS_YAML: &str = include_str!("../../data/fatigue_sets.yaml");
+
+/// k of one region \[1/min\] with its range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionK {
+    pub k: f64,
+    pub k_low: f64,
+    pub k_high: f64,
+}
+
+/// The recovery of a set, with ranges.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "form", rename_all = "snake_case", deny_unknown_fields)]
+pub enum RecoverySpec {
+    None,
+    Perfusion {
+        rest_per_min: f64,
+        rest_low: f64,
+        rest_high: f64,
+        limit_fmvc: f64,
+        limit_low: f64,
+        limit_high: f64,
+    },
+}
+
+impl RecoverySpec {
+    /// The recovery at the set's values.
+    pub fn recovery(&self) -> Recovery {
+        match *self {
+            RecoverySpec::None => Recovery::None,
+            RecoverySpec::Perfusion {
+                rest_per_min,
+                limit_fmvc,
+                ..
+            } => Recovery::Perfusion {
+                rest_per_min,
+                limit_fmvc,
+            },
+        }
+    }
+}
+
+/// One named set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterSet {
+    pub name: String,
+    pub description: String,
+    pub recovery: RecoverySpec,
+    pub k_source: String,
+    pub regions: std::collections::BTreeMap<String, RegionK>,
+    /// Region values that differ for women / men.
+    #[serde(default)]
+    pub female: std::collections::BTreeMap<String, RegionK>,
+    #[serde(default)]
+    pub male: std::collections::BTreeMap<String, RegionK>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SetsFile {
+    default_set: String,
+    sets: Vec<ParameterSet>,
+    recovery_sources: std::collections::BTreeMap<String, String>,
+}
+
+/// All shipped sets.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParameterSets {
+    pub default_set: String,
+    pub sets: Vec<ParameterSet>,
+    pub recovery_sources: std::collections::BTreeMap<String, String>,
+}
+
+impl ParameterSets {
+    /// The shipped sets (`data/fatigue_sets.yaml`).
+    pub fn shipped() -> Self {
+        let f: SetsFile = serde_saphyr::from_str(SETS_YAML).expect("the shipped parameter sets parse");
+        ParameterSets {
+            default_set: f.default_set,
+            sets: f.sets,
+            recovery_sources: f.recovery_sources,
+        }
+    }
+
+    /// A set by name.
+    pub fn get(&self, name: &str) -> Option<&ParameterSet> {
+        self.sets.iter().find(|s| s.name == name)
+    }
+
+    /// Names of all sets.
+    pub fn names(&self) -> Vec<&str> {
+        self.sets.iter().map(|s| s.name.as_str()).collect()
+    }
+}
+
+/// Where a parameter at one end of its range is taken, for the uncertainty analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Bound {
+    Low,
+    Value,
+    High,
+}
+
+impl ParameterSet {
+    /// k \[1/min\] for a region and sex at a bound of its range; "general" for unknown regions.
+    pub fn k(&self, region: &str, sex: Sex, bound: Bound) -> f64 {
+        let by_sex = match sex {
+            Sex::Female => &self.female,
+            Sex::Male => &self.male,
+        };
+        let r = by_sex
+            .get(region)
+            .or_else(|| self.regions.get(region))
+            .or_else(|| self.regions.get("general"))
+            .copied()
+            .unwrap_or(RegionK {
+                k: 1.0,
+                k_low: 1.0,
+                k_high: 1.0,
+            });
+        match bound {
+            Bound::Low => r.k_low,
+            Bound::Value => r.k,
+            Bound::High => r.k_high,
+        }
+    }
+
+    /// The recovery at bounds of its two parameters (rest rate, limit load).
+    pub fn recovery_at(&self, rest: Bound, limit: Bound) -> Recovery {
+        match self.recovery {
+            RecoverySpec::None => Recovery::None,
+            RecoverySpec::Perfusion {
+                rest_per_min,
+                rest_low,
+                rest_high,
+                limit_fmvc,
+                limit_low,
+                limit_high,
+            } => Recovery::Perfusion {
+                rest_per_min: match rest {
+                    Bound::Low => rest_low,
+                    Bound::Value => rest_per_min,
+                    Bound::High => rest_high,
+                },
+                limit_fmvc: match limit {
+                    Bound::Low => limit_low,
+                    Bound::Value => limit_fmvc,
+                    Bound::High => limit_high,
+                },
+            },
+        }
+    }
+
+    /// Parameters of a muscle group of `region` for a worker of `sex`, at the set's values.
+    pub fn params(&self, region: &str, sex: Sex) -> Result<MaParams, FatigueError> {
+        MaParams::with_recovery(self.k(region, sex, Bound::Value), self.recovery.recovery())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shipped_sets_parse_and_have_every_region() {
+        let s = ParameterSets::shipped();
+        assert!(s.get(&s.default_set).is_some());
+        for set in &s.sets {
+            for region in ["general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle"] {
+                let k = set.k(region, Sex::Male, Bound::Value);
+                assert!(k > 0.0 && set.k(region, Sex::Male, Bound::Low) <= k);
+                assert!(set.k(region, Sex::Female, Bound::High) >= set.k(region, Sex::Female, Bound::Value));
+            }
+        }
+        let d = s.get("default-2026").unwrap();
+        assert_eq!(d.k("elbow", Sex::Female, Bound::Value), 0.7376);
+        assert_eq!(d.k("elbow", Sex::Male, Bound::Value), 1.0315);
+        assert_eq!(d.k("shoulder", Sex::Female, Bound::Value), 1.3967);
+    }
+}

@@ -1,0 +1,24 @@
+//! Planning: task files, the posture optimiser and the planning loop.
+//!
+//! * [`task`]: task files → validated tasks;
+//! * [`posture`]: a posture evaluated (statics standing on both feet, loads, clearances, balance);
+//! * [`objective`]: the exact multi-cycle fatigue cost, discomfort, the baselines' costs;
+//! * [`qp`], [`sqp`]: the per-phase QP (clarabel) and the SQP around it (line search with
+//!   second-order correction, KKT stopping test);
+//! * [`ik`], [`search`]: starting postures and the deterministic multi-start;
+//! * [`planner`]: coordination passes across phases, the time loop with re-planning, baselines;
+//! * [`result`]: the plan document.
+
+pub mod ik;
+pub mod objective;
+pub mod planner;
+pub mod posture;
+pub mod qp;
+pub mod result;
+pub mod search;
+pub mod sqp;
+pub mod task;
+
+pub use planner::{plan_task, plan_task_with, PlanError, PlanOptions, Planner};
+pub use result::Plan;
+pub use task::{Task, TaskError, TaskFile};

@@ -1,0 +1,696 @@
+//! The planning loop: optimise every phase's posture → hold → update fatigue exactly → re-plan as
+//! capacity falls; and the baselines an ergonomist compares with.
+//!
+//! **Across phases.** Phases with the same targets and hand forces share one posture (a group).
+//! The groups are optimised in turn, each with the others' loads fixed, against the same
+//! objective (total fatigue at the end of the task plus the groups' time-weighted discomfort);
+//! passes repeat until the objective falls by less than 10⁻⁵ (relative) or five passes are done.
+//! Every group solve starts from its current posture and only accepts steps that lower the
+//! objective, so the passes' objectives never increase ([`Summary::passes`] records them), and the
+//! sequence converges. The first pass searches globally ([`super::search`]); later passes and
+//! re-plans refine locally.
+//!
+//! **In time.** Each cycle holds every phase's posture for its duration and then rests, standing
+//! with the arms hanging. Every half-joint's capacity and U are updated with the exact closed
+//! forms for the step's constant load. The plan re-plans at the start of a cycle when the
+//! re-plan interval has passed **and** some capacity has moved by more than the tolerance since
+//! the last plan, with the remaining task as horizon.
+//!
+//! **Baselines**, all held for the whole task and evaluated with the same exact simulation:
+//! fatigue-unaware (the same optimiser with fresh capacities and a one-cycle horizon), minimum
+//! joint load (sum of squared relative loads), and the nearest-to-neutral posture reaching the
+//! targets (discomfort only).
+
+use super::objective::{Discomfort, FatigueCost, LoadCost, NoLoadCost, SquaredLoads};
+use super::posture::{Other, PostureWork};
+use super::qp::QpError;
+use super::result::*;
+use super::search::{PhaseSolver, PhaseSpec, SearchStats};
+use super::sqp::{SqpOutcome, SqpSettings};
+use super::task::Task;
+use crate::fatigue::{MaParams, MaState};
+use nalgebra::Vector3;
+
+/// Why planning failed (an internal failure: the task was already validated).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    #[error("optimiser failed in phase '{phase}': {source}")]
+    Qp { phase: String, source: QpError },
+}
+
+/// How to plan.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanOptions {
+    /// Re-plan as capacity falls (false: the fatigue-unaware baseline is the plan).
+    pub adapt: bool,
+    /// Minimise fatigue only (no discomfort term).
+    pub fatigue_only: bool,
+    /// Compute the three baselines.
+    pub baselines: bool,
+    pub sqp: SqpSettings,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        PlanOptions {
+            adapt: true,
+            fatigue_only: false,
+            baselines: true,
+            sqp: SqpSettings::default(),
+        }
+    }
+}
+
+/// Most coordination passes.
+pub const MAX_PASSES: usize = 5;
+/// Passes stop when the objective falls by less than this (relative).
+pub const PASS_TOLERANCE: f64 = 1e-5;
+/// SQP iterations a re-plan allows each phase (it starts from the previous plan's posture).
+pub const REPLAN_ITERATIONS: usize = 15;
+
+/// The planner of one task.
+pub struct Planner<'t> {
+    task: &'t Task,
+    solver: PhaseSolver<'t>,
+    /// Groups of phases sharing a posture; each group's representative is its first phase.
+    groups: Vec<Vec<usize>>,
+    rest_loads: Vec<f64>,
+    rest_solve: SqpOutcome,
+    qp_solves_before: u64,
+}
+
+/// Postures of every group, with their solve records.
+#[derive(Clone)]
+struct GroupPostures {
+    q: Vec<Vec<f64>>,
+    solves: Vec<SqpOutcome>,
+    stats: Vec<SearchStats>,
+}
+
+impl<'t> Planner<'t> {
+    /// Builds the solver and the rest posture (standing, arms hanging, relaxed: least squared
+    /// loads and discomfort, clear of the workstation, balanced).
+    pub fn new(task: &'t Task, sqp: SqpSettings) -> Result<Self, PlanError> {
+        let qp_err = |phase: &str| {
+            let phase = phase.to_string();
+            move |source| PlanError::Qp { phase, source }
+        };
+        let mut solver = PhaseSolver::new(task, sqp).map_err(qp_err("rest"))?;
+        let mut groups: Vec<Vec<usize>> = Vec::new();
+        for p in 0..task.phases.len() {
+            match groups
+                .iter_mut()
+                .find(|g| task.phases[g[0]].same_work(&task.phases[p]))
+            {
+                Some(g) => g.push(p),
+                None => groups.push(vec![p]),
+            }
+        }
+        // Rest posture: from the standing zero posture, brought onto the stance.
+        let nh = task.half_joints.len();
+        let ones = vec![10.0; nh];
+        let spec = PhaseSpec {
+            targets_m: [None, None],
+            hand_force_n: [Vector3::zeros(); 2],
+            discomfort_weight: 1.0,
+            capacity: &ones,
+        };
+        let mut q_rest = vec![0.0; task.model.nq()];
+        let zero = q_rest.clone();
+        let (rest_solve, _) = solver
+            .solve(&spec, &mut SquaredLoads, Some(&zero), false, &mut q_rest)
+            .map_err(qp_err("rest"))?;
+        solver.q_rest = q_rest.clone();
+        let mut rest_loads = vec![0.0; nh];
+        solver.pw.statics(task, &q_rest, &[Vector3::zeros(); 2]);
+        solver.pw.half_joint_loads(task, &q_rest, &mut rest_loads);
+        Ok(Planner {
+            task,
+            qp_solves_before: solver.work.qp.solves,
+            solver,
+            groups,
+            rest_loads,
+            rest_solve,
+        })
+    }
+
+    /// The rest posture.
+    pub fn rest_posture(&self) -> &[f64] {
+        &self.solver.q_rest
+    }
+
+    /// Interior-point iterations of all QP solves so far.
+    pub fn ipm_iterations(&self) -> u64 {
+        self.solver.work.qp.ipm_iterations
+    }
+
+    fn loads_of(&mut self, q: &[f64], forces: &[Vector3<f64>; 2]) -> Vec<f64> {
+        let mut f = vec![0.0; self.task.half_joints.len()];
+        self.solver.pw.statics(self.task, q, forces);
+        self.solver.pw.half_joint_loads(self.task, q, &mut f);
+        f
+    }
+
+    fn phase_loads(&mut self, gp: &GroupPostures) -> Vec<Vec<f64>> {
+        let t = self.task;
+        let mut out = vec![Vec::new(); t.phases.len()];
+        for (g, members) in self.groups.clone().iter().enumerate() {
+            let f = self.loads_of(&gp.q[g], &t.phases[members[0]].hand_force_n);
+            for &p in members {
+                out[p] = f.clone();
+            }
+        }
+        out
+    }
+
+    fn group_weight(&self, g: usize, fatigue_only: bool) -> f64 {
+        if fatigue_only {
+            return 0.0;
+        }
+        let t = self.task;
+        t.objective.discomfort_weight * self.groups[g].len() as f64 / t.phases.len() as f64
+    }
+
+    /// The whole objective for postures `gp`: fatigue J plus the groups' weighted discomfort.
+    fn total_objective(
+        &mut self,
+        gp: &GroupPostures,
+        state: &[MaState],
+        cycles: u64,
+        fatigue_only: bool,
+    ) -> f64 {
+        let loads = self.phase_loads(gp);
+        let mut cost = FatigueCost::new(self.task, &self.groups[0], &loads, &self.rest_loads, state, cycles);
+        let j = cost.value(&loads[self.groups[0][0]]);
+        let d: f64 = (0..self.groups.len())
+            .map(|g| self.group_weight(g, fatigue_only) * self.solver.discomfort.value(&gp.q[g]))
+            .sum();
+        j + d
+    }
+
+    /// Optimises every group's posture for the state and horizon; `multistart` searches the
+    /// first pass globally. Returns the objective after each pass.
+    fn optimise(
+        &mut self,
+        gp: &mut GroupPostures,
+        state: &[MaState],
+        cycles: u64,
+        fatigue_only: bool,
+        multistart: bool,
+        max_passes: usize,
+    ) -> Result<Vec<f64>, PlanError> {
+        let t = self.task;
+        let capacity: Vec<f64> = state.iter().map(|s| s.capacity).collect();
+        let mut loads = self.phase_loads(gp);
+        let mut passes = Vec::new();
+        let mut last = f64::INFINITY;
+        for pass in 0..max_passes {
+            for g in 0..self.groups.len() {
+                let members = self.groups[g].clone();
+                let rep = &t.phases[members[0]];
+                let mut cost = FatigueCost::new(t, &members, &loads, &self.rest_loads, state, cycles);
+                let spec = PhaseSpec {
+                    targets_m: rep.targets_m,
+                    hand_force_n: rep.hand_force_n,
+                    discomfort_weight: self.group_weight(g, fatigue_only),
+                    capacity: &capacity,
+                };
+                let start = gp.q[g].clone();
+                let mut q = start.clone();
+                let (out, stats) = self
+                    .solver
+                    .solve(&spec, &mut cost, Some(&start), multistart && pass == 0, &mut q)
+                    .map_err(|source| PlanError::Qp {
+                        phase: rep.name.clone(),
+                        source,
+                    })?;
+                gp.q[g] = q;
+                gp.solves[g] = out;
+                if multistart && pass == 0 {
+                    gp.stats[g] = stats;
+                }
+                let f = self.loads_of(&gp.q[g], &rep.hand_force_n);
+                for &p in &members {
+                    loads[p] = f.clone();
+                }
+            }
+            let j = self.total_objective(gp, state, cycles, fatigue_only);
+            passes.push(j);
+            if (last - j).abs() <= PASS_TOLERANCE * j.abs().max(1.0) {
+                break;
+            }
+            last = j;
+        }
+        Ok(passes)
+    }
+
+    /// Postures per group solved once with a load cost of its own (baselines).
+    fn solve_independent(
+        &mut self,
+        cost_of: &mut dyn FnMut() -> Box<dyn LoadCost>,
+        weight: f64,
+    ) -> Result<GroupPostures, PlanError> {
+        let t = self.task;
+        let n = self.groups.len();
+        let big = vec![10.0; t.half_joints.len()];
+        let mut gp = GroupPostures {
+            q: vec![self.solver.q_rest.clone(); n],
+            solves: vec![SqpOutcome::default(); n],
+            stats: vec![SearchStats::default(); n],
+        };
+        for g in 0..n {
+            let rep = &t.phases[self.groups[g][0]];
+            let spec = PhaseSpec {
+                targets_m: rep.targets_m,
+                hand_force_n: rep.hand_force_n,
+                discomfort_weight: weight,
+                capacity: &big,
+            };
+            let mut cost = cost_of();
+            let mut q = gp.q[g].clone();
+            let (out, stats) = self
+                .solver
+                .solve(&spec, cost.as_mut(), None, false, &mut q)
+                .map_err(|source| PlanError::Qp {
+                    phase: rep.name.clone(),
+                    source,
+                })?;
+            gp.q[g] = q;
+            gp.solves[g] = out;
+            gp.stats[g] = stats;
+        }
+        Ok(gp)
+    }
+
+    /// The first plan's postures: seeded from the nearest-to-neutral reaching postures, then
+    /// optimised in passes.
+    fn initial(
+        &mut self,
+        state: &[MaState],
+        cycles: u64,
+        fatigue_only: bool,
+    ) -> Result<(GroupPostures, Vec<f64>), PlanError> {
+        let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0)?;
+        let passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
+        Ok((gp, passes))
+    }
+
+    /// Plans the task.
+    pub fn plan(&mut self, opts: PlanOptions) -> Result<Plan, PlanError> {
+        let t = self.task;
+        let nh = t.half_joints.len();
+        let fresh = vec![MaState::FRESH; nh];
+        self.qp_solves_before = self.solver.work.qp.solves;
+        self.solver.settings = opts.sqp;
+        self.solver.work.settings = opts.sqp;
+        let (gp, passes) = if opts.adapt {
+            self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?
+        } else {
+            self.initial(&fresh, 1, opts.fatigue_only)?
+        };
+        let mut plan = self.simulate(gp, passes, opts)?;
+        if opts.baselines {
+            plan.summary.baselines = self.baselines(&plan, opts)?;
+        }
+        Ok(plan)
+    }
+
+    fn baselines(&mut self, main: &Plan, opts: PlanOptions) -> Result<Vec<BaselineSummary>, PlanError> {
+        let t = self.task;
+        let nh = t.half_joints.len();
+        let fresh = vec![MaState::FRESH; nh];
+        let held = PlanOptions {
+            adapt: false,
+            baselines: false,
+            ..opts
+        };
+        let mut out = Vec::new();
+        let blind = if opts.adapt {
+            let (gp, passes) = self.initial(&fresh, 1, opts.fatigue_only)?;
+            Some(self.simulate(gp, passes, held)?)
+        } else {
+            None
+        };
+        let weight_free = 0.0;
+        let gp = self.solve_independent(&mut || Box::new(SquaredLoads), weight_free)?;
+        let min_load = self.simulate(gp, Vec::new(), held)?;
+        let gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0)?;
+        let neutral = self.simulate(gp, Vec::new(), held)?;
+        let total = main.summary.total_u;
+        let mut push = |name: &str, description: &str, p: &Plan| {
+            out.push(BaselineSummary {
+                name: name.into(),
+                description: description.into(),
+                total_u: p.summary.total_u,
+                duration_s: p.summary.duration_s,
+                exhaustion: p.summary.exhaustion.clone(),
+                change: if p.summary.total_u > 0.0 {
+                    total / p.summary.total_u - 1.0
+                } else {
+                    0.0
+                },
+            });
+        };
+        if let Some(b) = &blind {
+            push(
+                "fatigue_unaware",
+                "the same optimiser with fresh capacities and a one-cycle horizon, held all task",
+                b,
+            );
+        }
+        push(
+            "minimum_joint_load",
+            "least sum of squared relative loads per phase, held all task",
+            &min_load,
+        );
+        push(
+            "nearest_neutral",
+            "the posture nearest to neutral that reaches the targets, held all task",
+            &neutral,
+        );
+        Ok(out)
+    }
+
+    /// Holds the postures cycle by cycle with exact fatigue updates, re-planning when adaptive.
+    fn simulate(
+        &mut self,
+        mut gp: GroupPostures,
+        passes: Vec<f64>,
+        opts: PlanOptions,
+    ) -> Result<Plan, PlanError> {
+        let t = self.task;
+        let nh = t.half_joints.len();
+        let n_ph = t.phases.len();
+        let mut state = vec![MaState::FRESH; nh];
+        let mut postures: Vec<PostureRecord> = Vec::new();
+        let mut group_posture_index = vec![0usize; self.groups.len()];
+        let mut group_loads = vec![Vec::new(); self.groups.len()];
+        let record = |planner: &mut Self, gp: &GroupPostures, at: f64, postures: &mut Vec<PostureRecord>, idx: &mut Vec<usize>, loads: &mut Vec<Vec<f64>>| {
+            for g in 0..planner.groups.len() {
+                let rep = &t.phases[planner.groups[g][0]];
+                let rec = planner.posture_record(&gp.q[g], &rep.hand_force_n, &rep.name, at);
+                loads[g] = rec.load.clone();
+                idx[g] = postures.len();
+                postures.push(rec);
+            }
+        };
+        record(self, &gp, 0.0, &mut postures, &mut group_posture_index, &mut group_loads);
+        let rest_index = postures.len();
+        let q_rest = self.solver.q_rest.clone();
+        postures.push(self.posture_record(&q_rest, &[Vector3::zeros(); 2], "rest", 0.0));
+        let group_of: Vec<usize> = (0..n_ph)
+            .map(|p| self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0))
+            .collect();
+
+        let mut steps = Steps::default();
+        let mut time = 0.0;
+        let mut exhaustion: Option<Exhaustion> = None;
+        let mut cycles_done = 0;
+        let mut replans = 1u32;
+        let mut sqp_iterations: u64 = gp.solves.iter().map(|s| s.iterations as u64).sum();
+        let mut last_plan_capacity: Vec<f64> = state.iter().map(|s| s.capacity).collect();
+        let mut last_plan_cycle = 0u32;
+        let mut last_plan_t = 0.0;
+        let mut lowest = (1.0f64, 0usize, 0.0f64);
+        let n_steps = t.cycles as usize * (n_ph + usize::from(t.rest_s > 0.0));
+        steps.t_s.reserve(n_steps);
+        'cycles: for cycle in 0..t.cycles {
+            if opts.adapt && cycle > 0 {
+                let interval_passed = match t.replan_every_s {
+                    Some(s) => time - last_plan_t >= s,
+                    None => cycle - last_plan_cycle >= t.replan_every_cycles,
+                };
+                let moved = state
+                    .iter()
+                    .zip(&last_plan_capacity)
+                    .any(|(s, c)| (s.capacity - c).abs() > t.capacity_tolerance);
+                if interval_passed && moved {
+                    self.solver.settings.max_iterations = REPLAN_ITERATIONS;
+                    let r = self.optimise(&mut gp, &state, (t.cycles - cycle) as u64, opts.fatigue_only, false, 1);
+                    self.solver.settings = opts.sqp;
+                    r?;
+                    sqp_iterations += gp.solves.iter().map(|s| s.iterations as u64).sum::<u64>();
+                    record(self, &gp, time, &mut postures, &mut group_posture_index, &mut group_loads);
+                    replans += 1;
+                    last_plan_capacity = state.iter().map(|s| s.capacity).collect();
+                    last_plan_cycle = cycle;
+                    last_plan_t = time;
+                }
+            }
+            for si in 0..n_ph + usize::from(t.rest_s > 0.0) {
+                let (name, pidx, dur) = if si < n_ph {
+                    let g = group_of[si];
+                    (&t.phases[si].name, group_posture_index[g], t.phases[si].duration_s)
+                } else {
+                    (&"rest".to_string(), rest_index, t.rest_s)
+                };
+                let f = if si < n_ph {
+                    &group_loads[group_of[si]]
+                } else {
+                    &self.rest_loads
+                };
+                let mut dur = dur;
+                let mut ex: Option<(f64, usize)> = None;
+                for h in 0..nh {
+                    let te = if f[h] > 0.0 && state[h].capacity <= f[h] {
+                        Some(0.0)
+                    } else {
+                        t.fatigue[h].time_to_exhaustion_s(state[h].capacity, f[h])
+                    };
+                    if let Some(te) = te {
+                        if te < dur && ex.is_none_or(|(t0, _)| te < t0) {
+                            ex = Some((te, h));
+                        }
+                    }
+                }
+                if let Some((te, h)) = ex {
+                    dur = te;
+                    exhaustion = Some(Exhaustion {
+                        t_s: time + te,
+                        half_joint: t.half_joints[h].id.clone(),
+                        group: t.half_joints[h].group.clone(),
+                        phase: name.clone(),
+                        load: f[h],
+                        exceeds_strength: f[h] >= 1.0,
+                    });
+                }
+                for h in 0..nh {
+                    MaParams::hold(&t.fatigue[h], &mut state[h], f[h], dur);
+                    if state[h].capacity < lowest.0 {
+                        lowest = (state[h].capacity, h, time + dur);
+                    }
+                }
+                steps.t_s.push(time);
+                steps.duration_s.push(dur);
+                steps.phase.push(name.clone());
+                steps.cycle.push(cycle);
+                steps.posture.push(pidx);
+                steps.capacity.push(state.iter().map(|s| s.capacity).collect());
+                steps.fatigue_u_min.push(state.iter().map(|s| s.fatigue_u_min).collect());
+                time += dur;
+                if exhaustion.is_some() {
+                    break 'cycles;
+                }
+            }
+            cycles_done = cycle + 1;
+        }
+        let (worst_h, worst_u) = state
+            .iter()
+            .enumerate()
+            .map(|(h, s)| (h, s.fatigue_u_min))
+            .fold((0, f64::MIN), |a, b| if b.1 > a.1 { b } else { a });
+        let phases = self.phase_summaries(&gp, &group_loads);
+        let (rest_clear, rest_closest) = self.clearance_of(&q_rest);
+        Ok(Plan {
+            task: t.name.clone(),
+            robot: t.robot.clone(),
+            hand_frames: [
+                t.hand_links[0].as_ref().map(|h| h.1.clone()),
+                t.hand_links[1].as_ref().map(|h| h.1.clone()),
+            ],
+            fatigue_model: "ma2009 with load-dependent recovery".into(),
+            fatigue_parameters: t.fatigue_choice.clone(),
+            joints: t.joint_names(),
+            half_joint_ids: t.half_joint_ids(),
+            half_joints: t
+                .half_joints
+                .iter()
+                .zip(&t.fatigue)
+                .map(|(h, p)| HalfJointInfo {
+                    id: h.id.clone(),
+                    joint: h.joint.clone(),
+                    direction: h.direction.symbol().into(),
+                    group: h.group.clone(),
+                    region: h.region.clone(),
+                    mvc_nm: h.mvc_nm,
+                    k_per_min: p.k_per_min,
+                    recovery: p.recovery,
+                    recovery_per_min: p.r_at(0.0),
+                    sustainable_load: p.sustainable_load(),
+                    strength_source: h.source.clone(),
+                })
+                .collect(),
+            postures,
+            steps,
+            summary: Summary {
+                adaptive: opts.adapt,
+                fatigue_only: opts.fatigue_only,
+                duration_s: time,
+                planned_duration_s: t.duration_s(),
+                cycles_done,
+                total_u: state.iter().map(|s| s.fatigue_u_min).sum(),
+                worst_half_joint: t.half_joints[worst_h].id.clone(),
+                worst_u,
+                lowest_capacity: lowest.0,
+                lowest_capacity_half_joint: t.half_joints[lowest.1].id.clone(),
+                lowest_capacity_t_s: lowest.2,
+                final_capacity: state.iter().map(|s| s.capacity).collect(),
+                exhaustion,
+                replans,
+                qp_solves: self.solver.work.qp.solves - self.qp_solves_before,
+                sqp_iterations,
+                passes,
+                phases,
+                rest_posture_rad: q_rest,
+                rest_clearance_m: rest_clear,
+                rest_closest,
+                baselines: Vec::new(),
+            },
+        })
+    }
+
+    fn clearance_of(&mut self, q: &[f64]) -> (f64, Option<String>) {
+        let t = self.task;
+        self.solver.pw.statics(t, q, &[Vector3::zeros(); 2]);
+        let horizon = self.solver.settings.contact_horizon_m;
+        let d = self.solver.pw.clearances(t, &self.solver.scene, horizon);
+        let closest = self
+            .solver
+            .pw
+            .contacts
+            .iter()
+            .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
+            .map(|c| describe_contact(t, c.link, &c.other));
+        (if d.is_finite() { d } else { horizon }, closest)
+    }
+
+    fn posture_record(
+        &mut self,
+        q: &[f64],
+        forces: &[Vector3<f64>; 2],
+        phase: &str,
+        at: f64,
+    ) -> PostureRecord {
+        let t = self.task;
+        let pw: &mut PostureWork = &mut self.solver.pw;
+        pw.statics(t, q, forces);
+        let mut load = vec![0.0; t.half_joints.len()];
+        pw.half_joint_loads(t, q, &mut load);
+        let g = pw.ground;
+        PostureRecord {
+            phase: phase.into(),
+            planned_at_s: at,
+            q_rad: q.to_vec(),
+            torque_nm: pw.data.tau_nm.iter().copied().collect(),
+            load,
+            mvc_nm: t.half_joints.iter().map(|h| h.mvc_at(q)).collect(),
+            hand_position_m: [0, 1].map(|h| pw.hand_position(t, h).map(|p| [p.x, p.y, p.z])),
+            hand_force_n: [0, 1].map(|h| [forces[h].x, forces[h].y, forces[h].z]),
+            centre_of_pressure_m: g.map(|g| [g.cop_total_m.x, g.cop_total_m.y]),
+            balance_margin_m: g.map(|g| g.margin_m),
+            left_foot_share: g.map(|g| g.left_share),
+            centre_of_mass_m: [pw.data.com_m.x, pw.data.com_m.y, pw.data.com_m.z],
+        }
+    }
+
+    fn phase_summaries(&mut self, gp: &GroupPostures, group_loads: &[Vec<f64>]) -> Vec<PhaseSummary> {
+        let t = self.task;
+        let d = Discomfort::new(t);
+        (0..t.phases.len())
+            .map(|p| {
+                let g = self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0);
+                let q = &gp.q[g];
+                let ph = &t.phases[p];
+                let mut loaded: Vec<(String, f64)> = t
+                    .half_joints
+                    .iter()
+                    .zip(&group_loads[g])
+                    .map(|(h, f)| (h.id.clone(), *f))
+                    .collect();
+                loaded.sort_by(|a, b| b.1.total_cmp(&a.1));
+                loaded.truncate(3);
+                let sol = gp.solves[g];
+                let target_inside = ph.targets_m.iter().flatten().find_map(|tg| {
+                    t.workstation
+                        .obstacles
+                        .iter()
+                        .find(|o| o.contains(tg))
+                        .map(|o| o.spec.name.clone())
+                });
+                let (_, closest) = {
+                    self.solver.pw.statics(t, q, &ph.hand_force_n);
+                    let horizon = self.solver.settings.contact_horizon_m;
+                    self.solver.pw.clearances(t, &self.solver.scene, horizon);
+                    let c = self
+                        .solver
+                        .pw
+                        .contacts
+                        .iter()
+                        .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
+                        .map(|c| describe_contact(t, c.link, &c.other));
+                    (0.0, c)
+                };
+                PhaseSummary {
+                    phase: ph.name.clone(),
+                    q_rad: q.clone(),
+                    hand_error_m: sol.hand_error_m,
+                    reachable: sol.hand_error_m <= 0.01,
+                    target_inside,
+                    min_clearance_m: sol.min_clearance_m,
+                    closest,
+                    balance_margin_m: sol.balance_margin_m.is_finite().then_some(sol.balance_margin_m),
+                    most_loaded: loaded,
+                    at_limits: d
+                        .near_limits(q, 0.01)
+                        .into_iter()
+                        .map(|(k, _, _)| t.model.q_joint(k).name.clone())
+                        .collect(),
+                    discomfort: d.value(q),
+                    converged: sol.converged,
+                    kkt_residual: sol.kkt_residual,
+                    iterations: sol.iterations,
+                    solve: sol,
+                    search: gp.stats[g],
+                }
+            })
+            .collect()
+    }
+
+    /// The rest posture's solve record.
+    pub fn rest_solve(&self) -> SqpOutcome {
+        self.rest_solve
+    }
+}
+
+/// "obstacle 'cart'" or "right forearm ↔ trunk".
+fn describe_contact(t: &Task, link: usize, other: &Other) -> String {
+    let name = |l: usize| t.model.links[l].name.clone();
+    match other {
+        Other::Obstacle(i) => format!(
+            "{} ↔ obstacle '{}'",
+            name(link),
+            t.workstation.obstacles[*i].spec.name
+        ),
+        Other::Body { link: l2, .. } => format!("{} ↔ {}", name(link), name(*l2)),
+    }
+}
+
+/// Plans a task with the default options (adaptive, discomfort on, baselines).
+pub fn plan_task(task: &Task) -> Result<Plan, PlanError> {
+    plan_task_with(task, PlanOptions::default())
+}
+
+/// Plans a task with the given options.
+pub fn plan_task_with(task: &Task, opts: PlanOptions) -> Result<Plan, PlanError> {
+    Planner::new(task, opts.sqp)?.plan(opts)
+}

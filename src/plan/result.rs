@@ -1,0 +1,206 @@
+//! The plan document: what `posture-opt plan --json` prints (contract in `docs/interface.md`).
+//!
+//! Per-step results are columns: `steps` holds one array per quantity, and the per-joint or
+//! per-half-joint ones are arrays of rows ordered like `joints` or `half_joint_ids`. Torques,
+//! loads and strengths depend only on the posture and the hand forces, so they live with the
+//! `postures` that steps refer to by index.
+
+use crate::fatigue::Recovery;
+use crate::plan::sqp::SqpOutcome;
+use crate::plan::search::SearchStats;
+use serde::Serialize;
+
+/// One half-joint (muscle group) of the plan.
+#[derive(Debug, Clone, Serialize)]
+pub struct HalfJointInfo {
+    pub id: String,
+    pub joint: String,
+    pub direction: String,
+    /// The muscle group in words ("right shoulder flexors").
+    pub group: String,
+    pub region: String,
+    /// MVC at the reference posture \[N·m\] for this worker.
+    pub mvc_nm: f64,
+    pub k_per_min: f64,
+    pub recovery: Recovery,
+    /// Recovery rate at rest \[1/min\].
+    pub recovery_per_min: f64,
+    /// The largest load held forever (0 without recovery).
+    pub sustainable_load: f64,
+    pub strength_source: String,
+}
+
+/// A posture held in the plan, with its statics for the hand forces of the phase it serves.
+#[derive(Debug, Clone, Serialize)]
+pub struct PostureRecord {
+    pub phase: String,
+    /// Time it was planned \[s\].
+    pub planned_at_s: f64,
+    pub q_rad: Vec<f64>,
+    /// Holding torque per joint \[N·m\] (unactuated joints ≈ 0: balance).
+    pub torque_nm: Vec<f64>,
+    /// Relative load per half-joint.
+    pub load: Vec<f64>,
+    /// MVC per half-joint at this posture \[N·m\].
+    pub mvc_nm: Vec<f64>,
+    /// Hand positions (right, left) \[m\]; null for a hand the body lacks.
+    pub hand_position_m: [Option<[f64; 3]>; 2],
+    pub hand_force_n: [[f64; 3]; 2],
+    /// Centre of pressure \[m\] and balance margin \[m\], share of the weight on the left foot.
+    pub centre_of_pressure_m: Option<[f64; 2]>,
+    pub balance_margin_m: Option<f64>,
+    pub left_foot_share: Option<f64>,
+    /// Centre of mass of the body \[m\].
+    pub centre_of_mass_m: [f64; 3],
+}
+
+/// The held steps, as columns.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct Steps {
+    pub t_s: Vec<f64>,
+    pub duration_s: Vec<f64>,
+    pub phase: Vec<String>,
+    pub cycle: Vec<u32>,
+    /// Index into `postures`.
+    pub posture: Vec<usize>,
+    /// Per step, per half-joint: capacity and fatigue index \[min\] at the step's end.
+    pub capacity: Vec<Vec<f64>>,
+    pub fatigue_u_min: Vec<Vec<f64>>,
+}
+
+/// When a muscle group can no longer hold its load.
+#[derive(Debug, Clone, Serialize)]
+pub struct Exhaustion {
+    pub t_s: f64,
+    pub half_joint: String,
+    pub group: String,
+    pub phase: String,
+    pub load: f64,
+    /// The load is above the group's strength from the first instant (load > capacity when the
+    /// step starts): "exceeds strength (N % MVC)", not a time to exhaustion.
+    pub exceeds_strength: bool,
+}
+
+impl Exhaustion {
+    /// The verdict in words.
+    pub fn describe(&self) -> String {
+        if self.exceeds_strength {
+            format!(
+                "{} exceeds strength ({:.0} % MVC) in '{}'",
+                self.group,
+                100.0 * self.load,
+                self.phase
+            )
+        } else {
+            format!(
+                "{} exhausted at {:.0} s in '{}' (load {:.0} % MVC)",
+                self.group,
+                self.t_s,
+                self.phase,
+                100.0 * self.load
+            )
+        }
+    }
+}
+
+/// A phase's posture in the last plan, and how it was found.
+#[derive(Debug, Clone, Serialize)]
+pub struct PhaseSummary {
+    pub phase: String,
+    pub q_rad: Vec<f64>,
+    /// Largest hand error \[m\] (0 when on target).
+    pub hand_error_m: f64,
+    pub reachable: bool,
+    /// The obstacle a target lies inside, if any.
+    pub target_inside: Option<String>,
+    pub min_clearance_m: f64,
+    /// What the closest clearance is to (an obstacle or a body part).
+    pub closest: Option<String>,
+    pub balance_margin_m: Option<f64>,
+    /// The three most-loaded half-joints (relative load).
+    pub most_loaded: Vec<(String, f64)>,
+    /// Joints within 1 % of their range from a limit.
+    pub at_limits: Vec<String>,
+    pub discomfort: f64,
+    pub converged: bool,
+    pub kkt_residual: f64,
+    pub iterations: usize,
+    pub solve: SqpOutcome,
+    pub search: SearchStats,
+}
+
+/// A baseline plan's figures.
+#[derive(Debug, Clone, Serialize)]
+pub struct BaselineSummary {
+    pub name: String,
+    pub description: String,
+    pub total_u: f64,
+    pub duration_s: f64,
+    pub exhaustion: Option<Exhaustion>,
+    /// posture-opt's total relative to this one's (−0.2 = 20 % less fatigue).
+    pub change: f64,
+}
+
+/// The plan's summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub adaptive: bool,
+    pub fatigue_only: bool,
+    pub duration_s: f64,
+    pub planned_duration_s: f64,
+    pub cycles_done: u32,
+    pub total_u: f64,
+    pub worst_half_joint: String,
+    pub worst_u: f64,
+    /// Lowest capacity at any time of the simulated task, and where.
+    pub lowest_capacity: f64,
+    pub lowest_capacity_half_joint: String,
+    pub lowest_capacity_t_s: f64,
+    /// Capacity of every half-joint at the end.
+    pub final_capacity: Vec<f64>,
+    pub exhaustion: Option<Exhaustion>,
+    pub replans: u32,
+    pub qp_solves: u64,
+    pub sqp_iterations: u64,
+    /// The objective after each coordination pass of the first plan (non-increasing).
+    pub passes: Vec<f64>,
+    pub phases: Vec<PhaseSummary>,
+    pub rest_posture_rad: Vec<f64>,
+    /// Clearance of the rest posture \[m\] and what it is to.
+    pub rest_clearance_m: f64,
+    pub rest_closest: Option<String>,
+    pub baselines: Vec<BaselineSummary>,
+}
+
+/// A plan.
+#[derive(Debug, Clone, Serialize)]
+pub struct Plan {
+    pub task: String,
+    pub robot: String,
+    pub hand_frames: [Option<String>; 2],
+    pub fatigue_model: String,
+    pub fatigue_parameters: crate::plan::task::FatigueChoice,
+    pub joints: Vec<String>,
+    pub half_joint_ids: Vec<String>,
+    pub half_joints: Vec<HalfJointInfo>,
+    pub postures: Vec<PostureRecord>,
+    pub steps: Steps,
+    pub summary: Summary,
+}
+
+impl Plan {
+    /// Index of a half-joint by id.
+    pub fn half_joint(&self, id: &str) -> Option<usize> {
+        self.half_joint_ids.iter().position(|h| h == id)
+    }
+
+    /// Index of a joint by name.
+    pub fn joint(&self, name: &str) -> Option<usize> {
+        self.joints.iter().position(|j| j == name)
+    }
+
+    /// Relative load of half-joint `h` during step `i`.
+    pub fn step_load(&self, i: usize, h: usize) -> f64 {
+        self.postures[self.steps.posture[i]].load[h]
+    }
+}

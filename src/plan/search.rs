@@ -1,0 +1,265 @@
+//! Global search for one phase's posture: deterministic multi-start.
+//!
+//! Local minima must not decide the answer, so a phase is solved from several starting postures:
+//! the previous plan's posture (when re-planning), the standing rest posture, and — for the
+//! generated worker — a stoop, a squat, a trunk turned toward the target and two arm
+//! configurations (for other bodies: fixed, seeded perturbations of the rest posture). Each is
+//! first brought onto the hand targets and the stance by [`solve_ik`], then improved by a few SQP
+//! iterations; the most promising ([`SearchSettings::finalists`]) are solved to convergence and
+//! the best feasible one is kept. Everything is deterministic: the same problem gives the same
+//! posture, whatever posture the search started from.
+
+use super::ik::{solve_ik, IkSettings};
+use super::objective::{Discomfort, LoadCost};
+use super::posture::{PostureWork, Scene};
+use super::qp::QpError;
+use super::sqp::{solve_phase, PhaseProblem, SqpOutcome, SqpSettings, SqpWork};
+use super::task::Task;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Multi-start settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SearchSettings {
+    /// SQP iterations given to every seed before choosing the finalists.
+    pub screen_iterations: usize,
+    /// Seeds solved to convergence.
+    pub finalists: usize,
+}
+
+impl Default for SearchSettings {
+    fn default() -> Self {
+        SearchSettings {
+            screen_iterations: 3,
+            finalists: 2,
+        }
+    }
+}
+
+/// What the search did, for the record.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct SearchStats {
+    pub seeds: usize,
+    /// Index of the seed the kept posture came from (0 = the first seed).
+    pub best_seed: usize,
+    /// The kept posture's objective and the first seed's (after the full solve, when it was a
+    /// finalist; else after screening).
+    pub best_objective: f64,
+    pub first_seed_objective: f64,
+}
+
+/// The solver of one task: posture workspace, QP and SQP buffers, discomfort, rest posture.
+pub struct PhaseSolver<'t> {
+    pub task: &'t Task,
+    pub scene: Scene,
+    pub pw: PostureWork,
+    pub work: SqpWork,
+    pub discomfort: Discomfort,
+    pub search: SearchSettings,
+    pub settings: SqpSettings,
+    /// Standing at rest (set by the planner).
+    pub q_rest: Vec<f64>,
+}
+
+/// A phase to solve: targets, hand forces, and how its cost is weighed.
+pub struct PhaseSpec<'a> {
+    pub targets_m: [Option<Vector3<f64>>; 2],
+    pub hand_force_n: [Vector3<f64>; 2],
+    pub discomfort_weight: f64,
+    pub capacity: &'a [f64],
+}
+
+fn set(task: &Task, q: &mut [f64], name: &str, v: f64) {
+    if let Ok(k) = task.model.q_index(name) {
+        let j = task.model.q_joint(k);
+        q[k] = v.clamp(j.lower_rad, j.upper_rad);
+    }
+}
+
+impl<'t> PhaseSolver<'t> {
+    pub fn new(task: &'t Task, settings: SqpSettings) -> Result<Self, QpError> {
+        let scene = Scene::new(task);
+        let work = SqpWork::new(task, &scene, settings)?;
+        Ok(PhaseSolver {
+            task,
+            pw: PostureWork::new(task),
+            work,
+            discomfort: Discomfort::new(task),
+            scene,
+            search: SearchSettings::default(),
+            settings,
+            q_rest: vec![0.0; task.model.nq()],
+        })
+    }
+
+    /// Starting postures for a phase with these targets (before IK).
+    pub fn seeds(&self, targets: &[Option<Vector3<f64>>; 2]) -> Vec<Vec<f64>> {
+        let t = self.task;
+        let rest = self.q_rest.clone();
+        let mut out = vec![rest.clone()];
+        let worker = t.model.q_index("lumbar_flexion").is_ok() && t.model.q_index("pelvis_tz").is_ok();
+        let centre = targets.iter().flatten().fold(Vector3::zeros(), |a, b| a + b)
+            / targets.iter().flatten().count().max(1) as f64;
+        if worker {
+            let mut stoop = rest.clone();
+            set(t, &mut stoop, "lumbar_flexion", 0.5);
+            set(t, &mut stoop, "pelvis_tilt", 0.35);
+            out.push(stoop);
+            let mut squat = rest.clone();
+            let tz = t.model.q_index("pelvis_tz").map(|k| rest[k]).unwrap_or(0.0);
+            set(t, &mut squat, "pelvis_tz", tz - 0.25);
+            for side in ["r_", "l_"] {
+                set(t, &mut squat, &format!("{side}hip_flexion"), 0.9);
+                set(t, &mut squat, &format!("{side}knee_flexion"), 1.3);
+                set(t, &mut squat, &format!("{side}ankle_dorsiflexion"), 0.35);
+            }
+            set(t, &mut squat, "lumbar_flexion", 0.2);
+            out.push(squat);
+            let azimuth = centre.y.atan2(centre.x.max(0.05));
+            let mut twist = rest.clone();
+            set(t, &mut twist, "lumbar_axial_rotation", 0.5 * azimuth);
+            set(t, &mut twist, "pelvis_rotation", 0.3 * azimuth);
+            out.push(twist);
+            let geo = crate::body::worker::worker_geometry(&t.worker);
+            let elevation = (centre.z - geo.shoulder_height_m).atan2(centre.x.max(0.05));
+            for (abd, rot) in [(0.1, 0.0), (0.6, -0.6)] {
+                let mut arm = rest.clone();
+                for (h, side) in ["r_", "l_"].iter().enumerate() {
+                    if targets[h].is_some() {
+                        set(t, &mut arm, &format!("{side}shoulder_flexion"), 1.3 + elevation);
+                        set(t, &mut arm, &format!("{side}shoulder_abduction"), abd);
+                        set(t, &mut arm, &format!("{side}shoulder_rotation"), rot);
+                        set(t, &mut arm, &format!("{side}elbow_flexion"), 0.6);
+                    }
+                }
+                out.push(arm);
+            }
+        } else {
+            // Seeded perturbations of the rest posture (splitmix64, fixed seed).
+            let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+            let mut next = || {
+                state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+                let mut z = state;
+                z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+                z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+                ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+            };
+            for _ in 0..4 {
+                let mut q = rest.clone();
+                for (k, qk) in q.iter_mut().enumerate() {
+                    let j = t.model.q_joint(k);
+                    let (lo, hi) = (j.lower_rad.max(-std::f64::consts::PI), j.upper_rad.min(std::f64::consts::PI));
+                    *qk = (*qk + 0.3 * (hi - lo) * (2.0 * next() - 1.0)).clamp(j.lower_rad, j.upper_rad);
+                }
+                out.push(q);
+            }
+        }
+        out
+    }
+
+    /// Solves one phase from `start` (local), or globally from the seeds when `multistart`.
+    /// `q` receives the posture.
+    pub fn solve(
+        &mut self,
+        spec: &PhaseSpec,
+        cost: &mut dyn LoadCost,
+        start: Option<&[f64]>,
+        multistart: bool,
+        q: &mut Vec<f64>,
+    ) -> Result<(SqpOutcome, SearchStats), QpError> {
+        let mut starts: Vec<Vec<f64>> = Vec::new();
+        if let Some(s) = start {
+            starts.push(s.to_vec());
+        }
+        if multistart || starts.is_empty() {
+            starts.extend(self.seeds(&spec.targets_m));
+        }
+        // Bring every start onto the targets and the stance.
+        for s in starts.iter_mut() {
+            let reference = s.clone();
+            solve_ik(self.task, &mut self.pw, &spec.targets_m, &reference, s, IkSettings::default());
+        }
+        let full = self.settings;
+        if starts.len() == 1 {
+            let mut qq = starts.pop().unwrap_or_default();
+            let out = self.run(spec, cost, &mut qq, full)?;
+            *q = qq;
+            return Ok((
+                out,
+                SearchStats {
+                    seeds: 1,
+                    best_seed: 0,
+                    best_objective: out.objective,
+                    first_seed_objective: out.objective,
+                },
+            ));
+        }
+        let screen = SqpSettings {
+            max_iterations: self.search.screen_iterations,
+            ..full
+        };
+        let mut screened: Vec<(f64, usize, Vec<f64>, SqpOutcome)> = Vec::with_capacity(starts.len());
+        for (i, mut s) in starts.into_iter().enumerate() {
+            let out = self.run(spec, cost, &mut s, screen)?;
+            screened.push((rank(&out), i, s, out));
+        }
+        let first_screen = screened[0].3.objective;
+        screened.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let n_seeds = screened.len();
+        let mut best: Option<(f64, usize, Vec<f64>, SqpOutcome)> = None;
+        let mut first_full = None;
+        for (_, i, mut s, _) in screened.into_iter().take(self.search.finalists.max(1)) {
+            let out = self.run(spec, cost, &mut s, full)?;
+            if i == 0 {
+                first_full = Some(out.objective);
+            }
+            let r = rank(&out);
+            if best.as_ref().is_none_or(|b| r < b.0 || (r == b.0 && i < b.1)) {
+                best = Some((r, i, s, out));
+            }
+        }
+        let (_, bi, bq, bout) = best.expect("at least one finalist");
+        *q = bq;
+        Ok((
+            bout,
+            SearchStats {
+                seeds: n_seeds,
+                best_seed: bi,
+                best_objective: bout.objective,
+                first_seed_objective: first_full.unwrap_or(first_screen),
+            },
+        ))
+    }
+
+    fn run(
+        &mut self,
+        spec: &PhaseSpec,
+        cost: &mut dyn LoadCost,
+        q: &mut [f64],
+        settings: SqpSettings,
+    ) -> Result<SqpOutcome, QpError> {
+        self.work.settings = settings;
+        let mut prob = PhaseProblem {
+            targets_m: spec.targets_m,
+            hand_force_n: spec.hand_force_n,
+            cost,
+            discomfort: &self.discomfort,
+            discomfort_weight: spec.discomfort_weight,
+            capacity: spec.capacity,
+        };
+        let r = solve_phase(self.task, &self.scene, &mut self.pw, &mut self.work, &mut prob, q);
+        self.work.settings = self.settings;
+        r
+    }
+}
+
+/// Ranks outcomes: feasible (targets met, no collision or balance violation) first, then by
+/// objective. Infeasible ones rank by their violation.
+fn rank(o: &SqpOutcome) -> f64 {
+    let violation = o.hand_error_m.max(o.feasibility);
+    if violation <= 1e-4 {
+        o.objective
+    } else {
+        1e6 + violation
+    }
+}

@@ -1,0 +1,817 @@
+//! Sequential quadratic programming for one phase's posture.
+//!
+//! Each iteration linearises the statics, the hand targets, the feet, the clearances and the
+//! balance at the current posture and solves the QP of [`super::qp`] for a step `d`.
+//!
+//! **Globalisation: an ℓ1 exact-penalty line search with a second-order correction.** The merit
+//! is `φ(q) = J(q) + μ_eq ‖c_eq(q)‖₁ + μ_geo·(largest clearance/balance violation) + μ_cap·(largest
+//! capacity excess)`, the same penalties the QP's elastic slacks carry, so the QP step is a descent
+//! direction for φ. A full step is accepted when φ falls by a fraction of the QP's predicted
+//! decrease; if it does not — typically because a curved constraint (the hand on its target)
+//! makes a good long step look infeasible to first order (the Maratos effect) — a second-order
+//! correction re-solves the QP at the same point with the constraints' values at `q + d`, which
+//! pulls the step back onto the curved constraints; only then does the step shrink. The step is
+//! bounded by a fixed box (0.5 rad, 0.2 m), not by a shrinking trust region.
+//!
+//! **Stopping test: the KKT residual** of the problem at the current posture, with the
+//! multipliers of the QP solved there: stationarity `‖Px₀ + q + Aᵀz‖∞` over the posture and torque
+//! variables (x₀ the current point in the QP's variables), feasibility (largest target, feet,
+//! clearance and balance violation, metres or radians) and complementarity (largest
+//! `|z_i·slack_i|` of the inequality rows). A phase is `converged` when all three are below
+//! [`SqpSettings::tol_kkt`] (default 1e-6); otherwise the solve reports why it stopped.
+
+use super::objective::{Discomfort, LoadCost};
+use super::posture::{PostureWork, Scene};
+use super::qp::{PostureQp, QpError, QpPrecision, QpSizes};
+use super::task::Task;
+use crate::body::Direction;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Optimiser settings (documented defaults).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SqpSettings {
+    pub max_iterations: usize,
+    /// Largest step of a revolute joint \[rad\] and of a prismatic one \[m\] per iteration.
+    pub step_box_rad: f64,
+    pub step_box_m: f64,
+    /// KKT tolerance (stationarity, feasibility in m or rad, complementarity).
+    pub tol_kkt: f64,
+    /// ℓ1 penalties: equality rows (per m or rad), clearances and balance (per m), capacity.
+    pub mu_eq: f64,
+    pub mu_geo: f64,
+    pub mu_cap: f64,
+    /// Damping of the posture step \[1/rad²\].
+    pub damping: f64,
+    /// Contacts closer than this enter the QP \[m\].
+    pub contact_horizon_m: f64,
+    /// Clearance rows reserved in the QP (the closest contacts are kept).
+    pub clearance_rows: usize,
+    /// Capacity rows reserved in the QP (the half-joints closest to their capacity).
+    pub capacity_rows: usize,
+    /// Quadratic penalty of the equality rows' slacks (per m² or rad²).
+    pub mu_eq_quadratic: f64,
+    /// The QP solver's precision.
+    pub precision: QpPrecision,
+}
+
+impl Default for SqpSettings {
+    fn default() -> Self {
+        SqpSettings {
+            max_iterations: 60,
+            step_box_rad: 0.5,
+            step_box_m: 0.2,
+            tol_kkt: 1e-5,
+            mu_eq: 1e3,
+            mu_geo: 1e3,
+            mu_cap: 1e2,
+            damping: 1e-4,
+            contact_horizon_m: 0.10,
+            clearance_rows: 12,
+            capacity_rows: 8,
+            mu_eq_quadratic: 1e8,
+            precision: QpPrecision::default(),
+        }
+    }
+}
+
+/// Why a solve stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Stop {
+    /// The KKT residual is below the tolerance.
+    #[default]
+    Converged,
+    /// The iteration limit was reached.
+    IterationLimit,
+    /// No step along the QP's direction (nor its second-order correction) lowers the merit.
+    LineSearch,
+    /// The QP solver failed.
+    QpFailed,
+}
+
+/// Outcome of one phase's SQP.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct SqpOutcome {
+    pub converged: bool,
+    pub stop: Stop,
+    pub iterations: usize,
+    pub qp_solves: usize,
+    pub kkt_residual: f64,
+    pub stationarity: f64,
+    pub feasibility: f64,
+    pub complementarity: f64,
+    /// The objective J at the solution (fatigue cost + discomfort).
+    pub objective: f64,
+    /// Largest hand error \[m\].
+    pub hand_error_m: f64,
+    /// Smallest clearance \[m\] (contacts within the horizon; the horizon if none).
+    pub min_clearance_m: f64,
+    /// Balance margin \[m\] (standing bodies; infinity otherwise).
+    pub balance_margin_m: f64,
+}
+
+/// One phase's problem.
+pub struct PhaseProblem<'a> {
+    pub targets_m: [Option<Vector3<f64>>; 2],
+    pub hand_force_n: [Vector3<f64>; 2],
+    pub cost: &'a mut dyn LoadCost,
+    pub discomfort: &'a Discomfort,
+    pub discomfort_weight: f64,
+    /// Capacity bound per half-joint (the load it may hold).
+    pub capacity: &'a [f64],
+}
+
+/// Buffers and the QP of one task.
+pub struct SqpWork {
+    pub qp: PostureQp,
+    pub settings: SqpSettings,
+    f: Vec<f64>,
+    grad: Vec<f64>,
+    curv: Vec<f64>,
+    dq_grad: Vec<f64>,
+    dq_curv: Vec<f64>,
+    row: Vec<f64>,
+    x0: Vec<f64>,
+    stat: Vec<f64>,
+    ax: Vec<f64>,
+    q_trial: Vec<f64>,
+    mvc_grad: Vec<(usize, f64)>,
+    /// Equality residuals at the current point (targets then feet), for the SOC.
+    eq_res: Vec<f64>,
+    /// Damped BFGS approximation of the Lagrangian's curvature in q beyond the discomfort's
+    /// exact diagonal (row-major n × n), and the last iterate's q, Lagrangian gradient and duals.
+    bfgs: Vec<f64>,
+    last_q: Vec<f64>,
+    last_grad_l: Vec<f64>,
+    last_z: Vec<f64>,
+    have_last: bool,
+    first_update: bool,
+    reset_once: bool,
+    grad_l: Vec<f64>,
+    bs: Vec<f64>,
+}
+
+/// Merit terms of a posture.
+#[derive(Debug, Clone, Copy, Default)]
+struct Merit {
+    phi: f64,
+    j: f64,
+    eq_l1: f64,
+    eq_inf: f64,
+    geo: f64,
+    cap: f64,
+    hand_err: f64,
+    min_clear: f64,
+    margin: f64,
+}
+
+impl SqpWork {
+    pub fn new(task: &Task, scene: &Scene, settings: SqpSettings) -> Result<Self, QpError> {
+        let n = task.model.nq();
+        let a = scene.actuated.len();
+        let m = 6 + if task.stance.is_some() { 12 } else { 0 };
+        let e = task
+            .stance
+            .as_ref()
+            .map(|s| s.support_polygon_m.len())
+            .unwrap_or(0);
+        let sizes = QpSizes {
+            n,
+            a,
+            m,
+            c: settings.capacity_rows,
+            k: settings.clearance_rows,
+            e,
+        };
+        let nh = task.half_joints.len();
+        Ok(SqpWork {
+            qp: PostureQp::new(sizes, settings.precision)?,
+            settings,
+            f: vec![0.0; nh],
+            grad: vec![0.0; nh],
+            curv: vec![0.0; nh],
+            dq_grad: vec![0.0; n],
+            dq_curv: vec![0.0; n],
+            row: vec![0.0; n],
+            x0: vec![0.0; sizes.cols().n_var],
+            stat: vec![0.0; sizes.cols().n_var],
+            ax: vec![0.0; sizes.rows().n_row],
+            q_trial: vec![0.0; n],
+            mvc_grad: Vec::with_capacity(4),
+            eq_res: vec![0.0; m],
+            bfgs: vec![0.0; n * n],
+            last_q: vec![0.0; n],
+            last_grad_l: vec![0.0; n],
+            last_z: vec![0.0; sizes.rows().n_row],
+            have_last: false,
+            first_update: true,
+            reset_once: false,
+            grad_l: vec![0.0; n],
+            bs: vec![0.0; n],
+        })
+    }
+}
+
+/// Equality residuals (target − actual) at the posture in `pw` (after its statics): 3 per hand
+/// (zero for a free hand), then 6 per foot; into `out`.
+fn equality_residuals(task: &Task, pw: &PostureWork, targets: &[Option<Vector3<f64>>; 2], out: &mut [f64]) {
+    for h in 0..2 {
+        let r = match (targets[h], pw.hand_position(task, h)) {
+            (Some(t), Some(p)) => t - p,
+            _ => Vector3::zeros(),
+        };
+        out[3 * h..3 * h + 3].copy_from_slice(r.as_slice());
+    }
+    if task.stance.is_some() {
+        for i in 0..2 {
+            let (dp, dr) = pw.foot_error(task, i);
+            out[6 + 6 * i..9 + 6 * i].copy_from_slice(dp.as_slice());
+            out[9 + 6 * i..12 + 6 * i].copy_from_slice(dr.as_slice());
+        }
+    }
+}
+
+fn merit(
+    task: &Task,
+    scene: &Scene,
+    pw: &mut PostureWork,
+    work: &mut SqpWork,
+    prob: &mut PhaseProblem,
+    q: &[f64],
+) -> Merit {
+    let s = work.settings;
+    pw.statics(task, q, &prob.hand_force_n);
+    pw.half_joint_loads(task, q, &mut work.f);
+    let j = prob.cost.value(&work.f) + prob.discomfort_weight * prob.discomfort.value(q);
+    let mut res = std::mem::take(&mut work.eq_res);
+    equality_residuals(task, pw, &prob.targets_m, &mut res);
+    let eq_l1: f64 = res.iter().map(|x| x.abs()).sum();
+    let eq_inf = res.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let hand_err = (0..2)
+        .filter(|&h| prob.targets_m[h].is_some())
+        .map(|h| Vector3::new(res[3 * h], res[3 * h + 1], res[3 * h + 2]).norm())
+        .fold(0.0, f64::max);
+    work.eq_res = res;
+    let min_clear = pw.clearances(task, scene, s.contact_horizon_m);
+    let clear_viol = (task.objective.clearance_m - min_clear).max(0.0);
+    let margin = pw.ground.map(|g| g.margin_m).unwrap_or(f64::INFINITY);
+    let bal_viol = (task.objective.balance_margin_m - margin).max(0.0);
+    let geo = clear_viol.max(bal_viol);
+    let cap = work
+        .f
+        .iter()
+        .zip(prob.capacity)
+        .map(|(f, c)| (f - c).max(0.0))
+        .fold(0.0, f64::max);
+    Merit {
+        phi: j + s.mu_eq * eq_l1 + s.mu_geo * geo + s.mu_cap * cap,
+        j,
+        eq_l1,
+        eq_inf,
+        geo,
+        cap,
+        hand_err,
+        min_clear: if min_clear.is_finite() {
+            min_clear
+        } else {
+            s.contact_horizon_m
+        },
+        margin,
+    }
+}
+
+/// Largest step of a joint per iteration.
+fn step_box(s: SqpSettings, kind: crate::body::JointKind) -> f64 {
+    if kind == crate::body::JointKind::Prismatic {
+        s.step_box_m
+    } else {
+        s.step_box_rad
+    }
+}
+
+/// Fills the QP at posture `q` (linearisation in `pw`, contacts in `pw.contacts`).
+fn build_qp(
+    task: &Task,
+    scene: &Scene,
+    pw: &mut PostureWork,
+    work: &mut SqpWork,
+    prob: &mut PhaseProblem,
+    q: &[f64],
+) {
+    let s = work.settings;
+    pw.linearise(task, q, &prob.hand_force_n);
+    pw.half_joint_loads(task, q, &mut work.f);
+    prob.cost.eval(&work.f, &mut work.grad, &mut work.curv);
+    work.dq_grad.iter_mut().for_each(|x| *x = 0.0);
+    work.dq_curv.iter_mut().for_each(|x| *x = 0.0);
+    prob.discomfort
+        .eval(q, prob.discomfort_weight, &mut work.dq_grad, &mut work.dq_curv);
+    let mut res = std::mem::take(&mut work.eq_res);
+    equality_residuals(task, pw, &prob.targets_m, &mut res);
+    pw.clearances(task, scene, s.contact_horizon_m);
+    pw.contacts
+        .sort_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+    pw.contacts.truncate(s.clearance_rows);
+    if task.stance.is_some() {
+        pw.centre_of_pressure_jacobian(task);
+    }
+
+    let n = task.model.nq();
+    let qp = &mut work.qp;
+    qp.clear();
+    let (c, r) = (qp.cols, qp.rows);
+    let sz = qp.sizes;
+    // Posture terms: discomfort and damping, and the strength's posture dependence.
+    for k in 0..n {
+        qp.q[c.dq + k] = work.dq_grad[k];
+    }
+    let mut cap_order: Vec<(f64, usize)> = Vec::with_capacity(task.half_joints.len());
+    for (h, hj) in task.half_joints.iter().enumerate() {
+        let Some(row) = scene.actuated_row[hj.q_index] else {
+            continue;
+        };
+        let mvc = hj.mvc_at(q);
+        let tau = pw.data.tau_nm[hj.q_index];
+        let (col, s_bar) = match hj.direction {
+            Direction::Positive => (c.s_plus + row, tau.max(0.0)),
+            Direction::Negative => (c.s_minus + row, (-tau).max(0.0)),
+        };
+        let gs = work.grad[h] / mvc;
+        let hs = work.curv[h] / (mvc * mvc);
+        qp.p_diag[col] = hs.max(1e-12);
+        qp.q[col] = gs - hs * s_bar;
+        if hj.posture_dependent() && s_bar > 0.0 {
+            hj.mvc_gradient(q, &mut work.mvc_grad);
+            for &(k, dm) in &work.mvc_grad {
+                qp.q[c.dq + k] -= work.grad[h] * s_bar * dm / (mvc * mvc);
+            }
+        }
+        cap_order.push((work.f[h] - prob.capacity[h], h));
+    }
+    // Capacity rows for the half-joints closest to (or beyond) their capacity.
+    cap_order.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for row in 0..sz.c {
+        let rr = r.cap + row;
+        qp.set_a(rr, c.v_cap, -1.0);
+        match cap_order.get(row) {
+            Some(&(_, h)) => {
+                let hj = &task.half_joints[h];
+                let srow = scene.actuated_row[hj.q_index].unwrap_or(0);
+                let col = match hj.direction {
+                    Direction::Positive => c.s_plus + srow,
+                    Direction::Negative => c.s_minus + srow,
+                };
+                qp.set_a(rr, col, 1.0 / hj.mvc_at(q));
+                qp.b[rr] = prob.capacity[h];
+            }
+            None => qp.b[rr] = 1.0,
+        }
+    }
+    // Torque split rows.
+    for (row, &j) in scene.actuated.iter().enumerate() {
+        for k in 0..n {
+            qp.set_a(r.torque + row, c.dq + k, pw.dtau_dq[(j, k)]);
+        }
+        qp.set_a(r.torque + row, c.s_plus + row, -1.0);
+        qp.set_a(r.torque + row, c.s_minus + row, 1.0);
+        qp.b[r.torque + row] = -pw.data.tau_nm[j];
+    }
+    // Equality rows with elastic slacks.
+    for h in 0..2 {
+        if prob.targets_m[h].is_some() {
+            pw.hand_jacobian(task, h);
+            for d in 0..3 {
+                for k in 0..n {
+                    qp.set_a(r.eq + 3 * h + d, c.dq + k, pw.jac[(d, k)]);
+                }
+            }
+        }
+    }
+    if task.stance.is_some() {
+        for i in 0..2 {
+            pw.foot_jacobians(task, i);
+            for d in 0..3 {
+                for k in 0..n {
+                    qp.set_a(r.eq + 6 + 6 * i + d, c.dq + k, pw.jac[(d, k)]);
+                    qp.set_a(r.eq + 9 + 6 * i + d, c.dq + k, pw.jac2[(d, k)]);
+                }
+            }
+        }
+    }
+    for i in 0..sz.m {
+        qp.set_a(r.eq + i, c.e + i, 1.0);
+        qp.b[r.eq + i] = res[i];
+        qp.p_diag[c.e + i] = 2.0 * s.mu_eq_quadratic;
+    }
+    work.eq_res = res;
+    // Non-negativity of the torques and the slacks.
+    for i in 0..2 * sz.a {
+        qp.set_a(r.nonneg + i, c.s_plus + i, -1.0);
+    }
+    qp.set_a(r.nonneg + 2 * sz.a, c.v_cap, -1.0);
+    qp.set_a(r.nonneg + 2 * sz.a + 1, c.v_geo, -1.0);
+    qp.q[c.v_cap] = s.mu_cap;
+    qp.q[c.v_geo] = s.mu_geo;
+    qp.p_diag[c.v_cap] = 1e-6;
+    qp.p_diag[c.v_geo] = 1e-6;
+    // Joint limits: one row per joint, for its nearer limit within the step box; the step box
+    // on both sides is applied to the step afterwards.
+    for k in 0..n {
+        let j = task.model.q_joint(k);
+        let (up, down) = (j.upper_rad - q[k], q[k] - j.lower_rad);
+        if up <= down {
+            qp.set_a(r.limit + k, c.dq + k, 1.0);
+            qp.b[r.limit + k] = up.clamp(0.0, 1e3);
+        } else {
+            qp.set_a(r.limit + k, c.dq + k, -1.0);
+            qp.b[r.limit + k] = down.clamp(0.0, 1e3);
+        }
+    }
+    // Clearances: d + ∇d·Δq ≥ d_min  ⇔  −∇d·Δq − v ≤ d − d_min (unused rows: 0 ≤ 1).
+    let contacts = std::mem::take(&mut pw.contacts);
+    for row in 0..sz.k {
+        let rr = r.clearance + row;
+        qp.set_a(rr, c.v_geo, -1.0);
+        match contacts.get(row) {
+            Some(ct) => {
+                pw.contact_gradient(task, ct, &mut work.row);
+                for k in 0..n {
+                    qp.set_a(rr, c.dq + k, -work.row[k]);
+                }
+                qp.b[rr] = ct.distance_m - task.objective.clearance_m;
+            }
+            None => qp.b[rr] = 1.0,
+        }
+    }
+    pw.contacts = contacts;
+    // Balance: n_e·(p̄ + J_p Δq) ≤ d_e − margin.
+    if let (Some(st), Some(g)) = (&task.stance, pw.ground) {
+        for (row, (nrm, d)) in st.edges().enumerate().take(sz.e) {
+            let rr = r.balance + row;
+            for k in 0..n {
+                let v = nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)];
+                qp.set_a(rr, c.dq + k, v);
+            }
+            qp.set_a(rr, c.v_geo, -1.0);
+            qp.b[rr] = d - task.objective.balance_margin_m - nrm.dot(&g.cop_total_m);
+        }
+    }
+}
+
+/// Initial curvature of the BFGS part \[1/rad²\] (scale of J's curvature in q).
+const BFGS_INITIAL: f64 = 0.05;
+
+/// Forgets the learnt curvature.
+fn reset_curvature(work: &mut SqpWork) {
+    let n = work.qp.sizes.n;
+    work.have_last = false;
+    work.first_update = true;
+    work.bfgs.iter_mut().for_each(|x| *x = 0.0);
+    for k in 0..n {
+        work.bfgs[k * n + k] = BFGS_INITIAL;
+    }
+}
+
+/// Gradient of the Lagrangian in q at the QP just built, with duals `z`: `q_q + A_qᵀ z`.
+fn lagrangian_gradient(work: &mut SqpWork, z_from_last: bool) {
+    let n = work.qp.sizes.n;
+    let z = if z_from_last {
+        work.last_z.clone()
+    } else {
+        work.qp.z.clone()
+    };
+    work.qp.at_z_posture(&z, &mut work.grad_l);
+    for k in 0..n {
+        work.grad_l[k] += work.qp.q[work.qp.cols.dq + k];
+    }
+}
+
+/// Damped BFGS update (Powell) of the curvature with the step since the last iterate, then the
+/// QP's posture block of P: BFGS part + the discomfort's exact diagonal + damping.
+fn update_curvature(work: &mut SqpWork, q: &[f64]) {
+    let n = work.qp.sizes.n;
+    if work.have_last {
+        lagrangian_gradient(work, true);
+        let sv: Vec<f64> = (0..n).map(|k| q[k] - work.last_q[k]).collect();
+        // y without the discomfort's exact part (kept separately on the diagonal)
+        let y: Vec<f64> = (0..n)
+            .map(|k| work.grad_l[k] - work.last_grad_l[k] - work.dq_curv[k] * sv[k])
+            .collect();
+        for i in 0..n {
+            work.bs[i] = (0..n).map(|j| work.bfgs[i * n + j] * sv[j]).sum();
+        }
+        let mut sbs: f64 = (0..n).map(|i| sv[i] * work.bs[i]).sum();
+        let sy: f64 = (0..n).map(|i| sv[i] * y[i]).sum();
+        if work.first_update && sy > 1e-16 {
+            // Shanno–Phua: scale the initial matrix to the curvature seen along the first step
+            let yy: f64 = y.iter().map(|v| v * v).sum();
+            let scale = (yy / sy).clamp(1e-4, 1e4);
+            for i in 0..n {
+                for j in 0..n {
+                    work.bfgs[i * n + j] = if i == j { scale } else { 0.0 };
+                }
+                work.bs[i] = scale * sv[i];
+            }
+            sbs = scale * sv.iter().map(|v| v * v).sum::<f64>();
+        }
+        work.first_update = false;
+        if sbs > 1e-16 {
+            let theta = if sy >= 0.2 * sbs {
+                1.0
+            } else {
+                0.8 * sbs / (sbs - sy)
+            };
+            let r: Vec<f64> = (0..n).map(|i| theta * y[i] + (1.0 - theta) * work.bs[i]).collect();
+            let sr: f64 = (0..n).map(|i| sv[i] * r[i]).sum();
+            if sr > 1e-16 {
+                for i in 0..n {
+                    for j in 0..n {
+                        work.bfgs[i * n + j] +=
+                            r[i] * r[j] / sr - work.bs[i] * work.bs[j] / sbs;
+                    }
+                }
+            }
+        }
+    }
+    let damping = work.settings.damping;
+    let qp = &mut work.qp;
+    for i in 0..n {
+        for j in 0..n {
+            qp.p_dq[i * n + j] = work.bfgs[i * n + j];
+        }
+        qp.p_dq[i * n + i] += work.dq_curv[i] + damping;
+    }
+}
+
+/// Remembers the iterate, its Lagrangian gradient and the duals for the next BFGS update.
+fn remember_iterate(work: &mut SqpWork, q: &[f64]) {
+    lagrangian_gradient(work, false);
+    work.last_q.copy_from_slice(q);
+    work.last_grad_l.copy_from_slice(&work.grad_l);
+    work.last_z.copy_from_slice(&work.qp.z);
+    work.have_last = true;
+}
+
+/// The current point in the QP's variables (no step, torques split, slacks at the violations).
+fn current_point(task: &Task, scene: &Scene, pw: &PostureWork, work: &mut SqpWork, m: &Merit) {
+    let c = work.qp.cols;
+    work.x0.iter_mut().for_each(|x| *x = 0.0);
+    for (row, &j) in scene.actuated.iter().enumerate() {
+        let tau = pw.data.tau_nm[j];
+        work.x0[c.s_plus + row] = tau.max(0.0);
+        work.x0[c.s_minus + row] = (-tau).max(0.0);
+    }
+    for (i, r) in work.eq_res.iter().enumerate() {
+        work.x0[c.e + i] = *r;
+    }
+    work.x0[c.v_cap] = m.cap;
+    work.x0[c.v_geo] = m.geo;
+    let _ = task;
+}
+
+/// KKT residual at the current point with the QP's multipliers: (stationarity, complementarity).
+fn kkt(work: &mut SqpWork) -> (f64, f64) {
+    let qp = &work.qp;
+    let c = qp.cols;
+    qp.stationarity(&work.x0, &mut work.stat);
+    let stationarity = work.stat[..c.e]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    qp.a_times(&work.x0, &mut work.ax);
+    let r = qp.rows;
+    // the penalty slacks' own bounds are not constraints of the problem
+    let slack_rows = (r.nonneg + 2 * qp.sizes.a)..r.limit;
+    let complementarity = (r.n_zero..r.n_row)
+        .filter(|i| !slack_rows.contains(i))
+        .map(|i| (qp.z[i] * (qp.b[i] - work.ax[i]).max(0.0)).abs())
+        .fold(0.0f64, f64::max);
+    (stationarity, complementarity)
+}
+
+/// Optimises the posture `q` (in/out) of one phase.
+pub fn solve_phase(
+    task: &Task,
+    scene: &Scene,
+    pw: &mut PostureWork,
+    work: &mut SqpWork,
+    prob: &mut PhaseProblem,
+    q: &mut [f64],
+) -> Result<SqpOutcome, QpError> {
+    let n = task.model.nq();
+    let s = work.settings;
+    for (k, qk) in q.iter_mut().enumerate() {
+        let j = task.model.q_joint(k);
+        *qk = qk.clamp(j.lower_rad, j.upper_rad);
+    }
+    let mut out = SqpOutcome::default();
+    let mut m0 = merit(task, scene, pw, work, prob, q);
+    reset_curvature(work);
+    work.reset_once = false;
+    loop {
+        build_qp(task, scene, pw, work, prob, q);
+        update_curvature(work, q);
+        out.qp_solves += 1;
+        if !work.qp.solve()? {
+            out.stop = Stop::QpFailed;
+            break;
+        }
+        remember_iterate(work, q);
+        current_point(task, scene, pw, work, &m0);
+        let (stat, comp) = kkt(work);
+        let feas = m0.eq_inf.max(m0.geo);
+        out.stationarity = stat;
+        out.complementarity = comp;
+        out.feasibility = feas;
+        out.kkt_residual = stat.max(comp).max(feas);
+        if out.kkt_residual <= s.tol_kkt {
+            out.converged = true;
+            out.stop = Stop::Converged;
+            break;
+        }
+        if out.iterations >= s.max_iterations {
+            out.stop = Stop::IterationLimit;
+            break;
+        }
+        out.iterations += 1;
+        // Predicted decrease of the merit by the QP model: m(0) − m(d).
+        let c = work.qp.cols;
+        let model = |x: &[f64], qp: &PostureQp| -> f64 {
+            let mut px = vec![0.0; c.n_var];
+            qp.p_times(x, &mut px);
+            (0..c.n_var).map(|i| 0.5 * px[i] * x[i] + qp.q[i] * x[i]).sum()
+        };
+        let pred = (model(&work.x0, &work.qp) - model(&work.qp.x, &work.qp)).max(0.0);
+        // the step box: the whole step scaled (its direction kept), then the limits' far sides
+        let scale = (0..n)
+            .map(|k| work.qp.x[k].abs() / step_box(s, task.model.q_joint(k).kind))
+            .fold(1.0f64, f64::max);
+        let d: Vec<f64> = (0..n)
+            .map(|k| {
+                let j = task.model.q_joint(k);
+                (q[k] + work.qp.x[k] / scale).clamp(j.lower_rad, j.upper_rad) - q[k]
+            })
+            .collect();
+        if std::env::var("SQP_DEBUG").is_ok() {
+            let dn = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            eprintln!("it {} phi {:.6} j {:.6} eq {:.2e} geo {:.2e} cap {:.2e} | stat {:.2e} comp {:.2e} feas {:.2e} | pred {:.3e} |d| {:.3e}", out.iterations, m0.phi, m0.j, m0.eq_inf, m0.geo, m0.cap, stat, comp, feas, pred, dn);
+            // directional derivative of the merit along d by finite differences
+            for &eps in &[1e-3, 1e-5, 1e-7] {
+                for k in 0..n { work.q_trial[k] = q[k] + eps * d[k]; }
+                let trial = std::mem::take(&mut work.q_trial);
+                let m1 = merit(task, scene, pw, work, prob, &trial);
+                work.q_trial = trial;
+                eprintln!("    eps {eps:e}: dphi/eps {:.4e} (dj {:.4e} deq {:.4e} dgeo {:.4e} dcap {:.4e})", (m1.phi - m0.phi)/eps, (m1.j-m0.j)/eps, s.mu_eq*(m1.eq_l1-m0.eq_l1)/eps, s.mu_geo*(m1.geo-m0.geo)/eps, s.mu_cap*(m1.cap-m0.cap)/eps);
+            }
+        }
+        let mut accepted = false;
+        let mut alpha = 1.0;
+        while alpha >= 1e-8 {
+            for k in 0..n {
+                work.q_trial[k] = q[k] + alpha * d[k];
+            }
+            let mut trial = std::mem::take(&mut work.q_trial);
+            // Second-order correction, iterated: back onto the curved targets and feet, and out
+            // of any clearance or balance constraint the step crossed.
+            restore(task, scene, pw, &prob.targets_m, &mut trial, work.settings.contact_horizon_m);
+            let m1 = merit(task, scene, pw, work, prob, &trial);
+            work.q_trial = trial;
+            if std::env::var("SQP_DEBUG").is_ok() {
+                eprintln!("    alpha {alpha:.3e}: actual {:.4e} vs pred {:.4e} (dj {:.3e} eq {:.2e})", m0.phi - m1.phi, alpha * pred, m0.j - m1.j, m1.eq_inf);
+            }
+            if m1.phi <= m0.phi - 1e-4 * alpha * pred || (pred <= 1e-14 && m1.phi <= m0.phi) {
+                q.copy_from_slice(&work.q_trial);
+                m0 = m1;
+                accepted = true;
+                break;
+            }
+            alpha *= 0.5;
+        }
+        if !accepted && !work.reset_once {
+            // The curvature learnt across kinks (torques changing sign) can stall the steps:
+            // forget it once and retry from the same posture.
+            work.reset_once = true;
+            reset_curvature(work);
+            continue;
+        }
+        if !accepted {
+            if std::env::var("SQP_DEBUG").is_ok() {
+                let c = work.qp.cols;
+                let mut idx: Vec<usize> = (0..c.e).collect();
+                idx.sort_by(|a, b| work.stat[*b].abs().total_cmp(&work.stat[*a].abs()));
+                for &i in idx.iter().take(6) {
+                    let what = if i < n { format!("dq {}", task.model.q_joint(i).name) } else if i < c.s_minus { format!("s+ {}", task.model.q_joint(scene.actuated[i - c.s_plus]).name) } else { format!("s- {}", task.model.q_joint(scene.actuated[i - c.s_minus]).name) };
+                    eprintln!("  stat[{what}] = {:.3e}  x0 {:.3e} x* {:.3e} p {:.3e} q {:.3e}", work.stat[i], work.x0[i], work.qp.x[i], work.qp.p_diag[i], work.qp.q[i]);
+                }
+            }
+            out.stop = Stop::LineSearch;
+            break;
+        }
+    }
+    let m = merit(task, scene, pw, work, prob, q);
+    out.objective = m.j;
+    out.hand_error_m = m.hand_err;
+    out.min_clearance_m = m.min_clear;
+    out.balance_margin_m = m.margin;
+    Ok(out)
+}
+
+/// Returns `q` onto the hand targets and the stance, and back to the boundary of any clearance
+/// or balance constraint it violates, by Newton projection (minimum-norm steps
+/// `Δ = Jᵀ(JJᵀ)⁻¹ r`, at most eight) within the joint limits: the optimiser's second-order
+/// correction. Returns the largest remaining residual \[m or rad\].
+pub fn restore(
+    task: &Task,
+    scene: &Scene,
+    pw: &mut PostureWork,
+    targets: &[Option<Vector3<f64>>; 2],
+    q: &mut [f64],
+    horizon_m: f64,
+) -> f64 {
+    use nalgebra::{DMatrix, DVector};
+    let n = task.model.nq();
+    let zero = [Vector3::zeros(); 2];
+    let mut worst = f64::INFINITY;
+    let mut rows: Vec<(f64, Vec<f64>)> = Vec::with_capacity(24);
+    let mut grad = vec![0.0; n];
+    for it in 0..8 {
+        pw.statics(task, q, &zero);
+        rows.clear();
+        for h in 0..2 {
+            if let (Some(t), Some(p)) = (targets[h], pw.hand_position(task, h)) {
+                pw.hand_jacobian(task, h);
+                for d in 0..3 {
+                    rows.push((t[d] - p[d], (0..n).map(|k| pw.jac[(d, k)]).collect()));
+                }
+            }
+        }
+        if task.stance.is_some() {
+            for i in 0..2 {
+                let (dp, dr) = pw.foot_error(task, i);
+                pw.foot_jacobians(task, i);
+                for d in 0..3 {
+                    rows.push((dp[d], (0..n).map(|k| pw.jac[(d, k)]).collect()));
+                    rows.push((dr[d], (0..n).map(|k| pw.jac2[(d, k)]).collect()));
+                }
+            }
+        }
+        // violated clearances: d(q) = d_min
+        pw.clearances(task, scene, horizon_m);
+        let contacts: Vec<_> = pw
+            .contacts
+            .iter()
+            .filter(|c| c.distance_m < task.objective.clearance_m)
+            .copied()
+            .collect();
+        for c in &contacts {
+            pw.contact_gradient(task, c, &mut grad);
+            rows.push((task.objective.clearance_m - c.distance_m, grad.clone()));
+        }
+        // a violated balance margin: the worst edge back to the margin
+        if let (Some(st), Some(g)) = (&task.stance, pw.ground) {
+            if g.margin_m < task.objective.balance_margin_m {
+                pw.centre_of_pressure_jacobian(task);
+                if let Some((nrm, d)) = st
+                    .edges()
+                    .min_by(|a, b| (a.1 - a.0.dot(&g.cop_total_m)).total_cmp(&(b.1 - b.0.dot(&g.cop_total_m))))
+                {
+                    // margin = d − n·p must rise to the minimum: −n·J_p Δ = m_min − margin
+                    let row: Vec<f64> = (0..n)
+                        .map(|k| -(nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)]))
+                        .collect();
+                    let margin = d - nrm.dot(&g.cop_total_m);
+                    rows.push((task.objective.balance_margin_m - margin, row));
+                }
+            }
+        }
+        if rows.is_empty() {
+            return 0.0;
+        }
+        let w = rows.iter().fold(0.0f64, |m, r| m.max(r.0.abs()));
+        if it >= 3 && w > worst * 0.5 {
+            return w.min(worst); // not converging (out of reach, or limits in the way)
+        }
+        worst = w;
+        if worst < 1e-13 {
+            break;
+        }
+        let m = rows.len();
+        let jm = DMatrix::<f64>::from_fn(m, n, |r, k| rows[r].1[k]);
+        let e = DVector::<f64>::from_fn(m, |r, _| rows[r].0);
+        let mut jjt = &jm * jm.transpose();
+        for r in 0..m {
+            jjt[(r, r)] += 1e-12;
+        }
+        let Some(chol) = jjt.cholesky() else { break };
+        let dq = jm.transpose() * chol.solve(&e);
+        if !dq.iter().all(|x| x.is_finite()) {
+            break;
+        }
+        let scale = (dq.amax() / 0.2).max(1.0);
+        for k in 0..n {
+            let j = task.model.q_joint(k);
+            q[k] = (q[k] + dq[k] / scale).clamp(j.lower_rad, j.upper_rad);
+        }
+    }
+    worst
+}

@@ -1,0 +1,993 @@
+//! Task files (YAML) → a validated [`Task`]: names resolved, units and ranges checked.
+//!
+//! A task describes one worker doing a cycle of phases — hand targets for one or both hands, the
+//! load held, a duration — repeated for a number of cycles with a rest per cycle, standing at a
+//! workstation with obstacles. See `tasks/*.yaml` and `docs/task-format.md` (generated from the
+//! JSON Schema that `posture-opt schema` prints). Units: metres, kilograms, newtons, seconds,
+//! radians (degrees where a field says `_deg`); world frame x forward, y left, z up, floor at z = 0.
+
+use crate::body::stance::{Foot, Stance};
+use crate::body::worker::{worker_geometry, LEFT_FOOT_LINK, RIGHT_FOOT_LINK};
+use crate::body::{
+    resolve_half_joints, worker_urdf, BodyModel, HalfJoint, StrengthTable, Worker, GRAVITY_M_S2,
+};
+use crate::fatigue::params::{ParameterSet, ParameterSets};
+use crate::fatigue::{MaParams, Recovery};
+use crate::workstation::{ObstacleSpec, Workstation};
+use nalgebra::Vector3;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Longest task accepted \[s\] (a year).
+pub const MAX_DURATION_S: f64 = 365.0 * 24.0 * 3600.0;
+/// Heaviest load accepted \[kg\] (a tonne).
+pub const MAX_LOAD_KG: f64 = 1000.0;
+/// Largest hand force component accepted \[N\].
+pub const MAX_HAND_FORCE_N: f64 = 10_000.0;
+/// Largest gravity accepted \[m/s²\] (three g).
+pub const MAX_GRAVITY_M_S2: f64 = 3.0 * 9.81;
+/// Most held steps a plan may have (cycles × (phases + rest)): bounds time and memory.
+pub const MAX_STEPS: u64 = 400_000;
+/// Most phases per cycle.
+pub const MAX_PHASES: usize = 200;
+/// Largest coordinate of a target or obstacle \[m\].
+pub const MAX_COORDINATE_M: f64 = 1000.0;
+
+/// The task file as written.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TaskFile {
+    /// A short title for reports.
+    pub name: String,
+    /// Who does the task.
+    pub worker: Worker,
+    /// URDF body, relative to the task file. Absent: the whole-body worker is generated from
+    /// `worker` (de Leva 1996 segments).
+    #[serde(default)]
+    pub robot: Option<String>,
+    /// Frame of the right hand's grip (default `r_hand_grip`).
+    #[serde(default)]
+    pub hand_frame: Option<String>,
+    /// Frame of the left hand's grip (default `l_hand_grip` when the body has it).
+    #[serde(default)]
+    pub left_hand_frame: Option<String>,
+    /// Gravity \[m/s²\], world frame; default (0, 0, −9.81). Magnitude at most 3 g.
+    #[serde(default)]
+    pub gravity_m_s2: Option<[f64; 3]>,
+    /// Where the feet stand (bodies with a floating pelvis).
+    #[serde(default)]
+    pub stance: Option<StanceFile>,
+    /// Obstacles of the workstation.
+    #[serde(default)]
+    pub workstation: WorkstationFile,
+    /// The phases of one cycle, in order.
+    pub phases: Vec<PhaseFile>,
+    /// How many times the cycle repeats (1 or more).
+    pub cycles: u32,
+    /// Rest at the end of each cycle \[s\]: standing, arms hanging, no load. Default 0.
+    #[serde(default)]
+    pub rest_s: f64,
+    /// When to re-plan as capacity falls.
+    #[serde(default)]
+    pub replan: ReplanFile,
+    /// Fatigue model parameters.
+    #[serde(default)]
+    pub fatigue: FatigueFile,
+    /// What the optimiser weighs besides fatigue.
+    #[serde(default)]
+    pub objective: ObjectiveFile,
+}
+
+/// Stance on both feet.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StanceFile {
+    /// Distance between the sole centres \[m\]; default the worker's shoulder width
+    /// (0.21 × stature).
+    #[serde(default)]
+    pub width_m: Option<f64>,
+    /// Sole centres this far forward of the origin \[m\]; default 0.
+    #[serde(default)]
+    pub forward_m: f64,
+    /// Each foot turned outward by this much \[deg\], 0..45; default 0.
+    #[serde(default)]
+    pub toe_out_deg: f64,
+    /// Foot links (left, right) of a custom robot; default `l_foot`, `r_foot`.
+    #[serde(default)]
+    pub feet: Option<[String; 2]>,
+}
+
+/// The workstation.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WorkstationFile {
+    #[serde(default)]
+    pub obstacles: Vec<ObstacleSpec>,
+}
+
+/// Which hand a one-handed phase uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum HandName {
+    #[default]
+    Right,
+    Left,
+}
+
+/// Targets for each hand \[m\], world frame.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HandTargetsFile {
+    #[serde(default)]
+    pub right_m: Option<[f64; 3]>,
+    #[serde(default)]
+    pub left_m: Option<[f64; 3]>,
+}
+
+/// An object held with both hands.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectFile {
+    /// Where the object's centre (between the hands) must be \[m\].
+    pub center_m: [f64; 3],
+    /// Distance between the hands \[m\], along the world y axis (left hand on +y).
+    pub grip_width_m: f64,
+    /// Size of the object (x, y, z) \[m\], for the figures; default a box as wide as the grip.
+    #[serde(default)]
+    pub size_m: Option<[f64; 3]>,
+}
+
+/// One phase of the cycle: give exactly one of `target_m`, `targets` or `object`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PhaseFile {
+    pub name: String,
+    /// One-handed: the hand's target \[m\], world frame.
+    #[serde(default)]
+    pub target_m: Option<[f64; 3]>,
+    /// The hand of a one-handed phase (default right).
+    #[serde(default)]
+    pub hand: HandName,
+    /// A target per hand.
+    #[serde(default)]
+    pub targets: Option<HandTargetsFile>,
+    /// An object held with both hands.
+    #[serde(default)]
+    pub object: Option<ObjectFile>,
+    /// A carried load \[kg\] (force = mass × gravity), 0..1000 ...
+    #[serde(default)]
+    pub load_kg: Option<f64>,
+    /// ... or the force the environment applies on the hands in total \[N\], world frame.
+    #[serde(default)]
+    pub hand_force_n: Option<[f64; 3]>,
+    /// Share of a two-handed load on the left hand, 0..1; default 0.5.
+    #[serde(default)]
+    pub left_share: Option<f64>,
+    /// How long the posture is held \[s\], > 0.
+    pub duration_s: f64,
+}
+
+/// When to re-plan.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ReplanFile {
+    /// Re-plan at most every this many cycles (default 1) ...
+    #[serde(default = "one")]
+    pub every_cycles: u32,
+    /// ... or every this many seconds (whichever is given; cycles if both).
+    #[serde(default)]
+    pub every_s: Option<f64>,
+    /// ... and only when some capacity moved by more than this since the last plan (default 0.02).
+    #[serde(default = "default_capacity_tolerance")]
+    pub capacity_tolerance: f64,
+}
+
+fn one() -> u32 {
+    1
+}
+fn default_capacity_tolerance() -> f64 {
+    0.02
+}
+
+impl Default for ReplanFile {
+    fn default() -> Self {
+        ReplanFile {
+            every_cycles: 1,
+            every_s: None,
+            capacity_tolerance: default_capacity_tolerance(),
+        }
+    }
+}
+
+/// Fatigue parameters: a named set (default `default-2026`), optionally overridden.
+///
+/// Older task files that give only `k_per_min` and/or `recovery_per_min` keep their meaning:
+/// one k for every muscle group and a constant recovery rate acting under load as at rest (the
+/// model's printout names the load below which that holds forever).
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FatigueFile {
+    /// Named parameter set: `default-2026`, `frey-law-avin-2010` or `ma2009`.
+    #[serde(default)]
+    pub parameters: Option<String>,
+    /// Fatigue rate k \[1/min\] for every muscle group (0.01..20).
+    #[serde(default)]
+    pub k_per_min: Option<f64>,
+    /// A constant recovery rate R \[1/min\], under load as at rest (0..20; the older form).
+    #[serde(default)]
+    pub recovery_per_min: Option<f64>,
+    /// Perfusion-limited recovery: the rate at rest and the load where recovery stops.
+    #[serde(default)]
+    pub recovery: Option<RecoveryFile>,
+    /// Overrides per body region (trunk, neck, shoulder, elbow, grip, hip, knee, ankle) or
+    /// half-joint id (`r_shoulder_flexion+`).
+    #[serde(default)]
+    pub overrides: BTreeMap<String, FatigueOverride>,
+}
+
+/// Perfusion-limited recovery parameters.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RecoveryFile {
+    /// Recovery rate at rest \[1/min\], 0..20.
+    pub rest_per_min: f64,
+    /// Load (fraction of MVC) from which recovery stops, 0.01..1.
+    pub limit_fmvc: f64,
+}
+
+/// Per-region or per-group fatigue override.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FatigueOverride {
+    #[serde(default)]
+    pub k_per_min: Option<f64>,
+    #[serde(default)]
+    pub recovery_per_min: Option<f64>,
+}
+
+/// The optimiser's weights besides fatigue.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectiveFile {
+    /// Weight of the joint-range discomfort term (0 = fatigue only; default 0.5, 0..100).
+    #[serde(default = "default_discomfort")]
+    pub discomfort_weight: f64,
+    /// Smallest distance between the body and an obstacle \[m\] (default 0.01, 0..0.5).
+    #[serde(default = "default_clearance")]
+    pub clearance_m: f64,
+    /// Smallest distance of the centre of pressure inside the support polygon \[m\]
+    /// (default 0.02, 0..0.2).
+    #[serde(default = "default_margin")]
+    pub balance_margin_m: f64,
+}
+
+fn default_discomfort() -> f64 {
+    0.5
+}
+fn default_clearance() -> f64 {
+    0.01
+}
+fn default_margin() -> f64 {
+    0.02
+}
+
+impl Default for ObjectiveFile {
+    fn default() -> Self {
+        ObjectiveFile {
+            discomfort_weight: default_discomfort(),
+            clearance_m: default_clearance(),
+            balance_margin_m: default_margin(),
+        }
+    }
+}
+
+/// Why a task file was refused; every message names the file and the field or line.
+#[derive(Debug, thiserror::Error)]
+pub enum TaskError {
+    #[error("{path}: cannot read: {message}")]
+    Io { path: String, message: String },
+    #[error("{path}: {message}")]
+    Parse { path: String, message: String },
+    #[error("{path}: {field}: {problem}")]
+    Field {
+        path: String,
+        field: String,
+        problem: String,
+    },
+}
+
+/// The two hands; index 0 right, 1 left.
+pub const HANDS: [&str; 2] = ["right", "left"];
+
+/// An object held in both hands (for the figures).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct HeldObject {
+    pub center_m: [f64; 3],
+    pub size_m: [f64; 3],
+}
+
+/// One phase, checked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Phase {
+    pub name: String,
+    /// Target of each hand (right, left); `None`: that hand is free (hanging, unloaded).
+    pub targets_m: [Option<Vector3<f64>>; 2],
+    /// Force the environment applies on each hand \[N\].
+    pub hand_force_n: [Vector3<f64>; 2],
+    pub duration_s: f64,
+    pub object: Option<HeldObject>,
+}
+
+impl Phase {
+    /// Same targets and hand forces: the same work, hence the same optimal posture.
+    pub fn same_work(&self, other: &Phase) -> bool {
+        self.targets_m == other.targets_m && self.hand_force_n == other.hand_force_n
+    }
+
+    /// Total force on the hands \[N\].
+    pub fn total_force_n(&self) -> Vector3<f64> {
+        self.hand_force_n[0] + self.hand_force_n[1]
+    }
+
+    /// Hands used.
+    pub fn hands(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..2).filter(|&h| self.targets_m[h].is_some())
+    }
+}
+
+/// How the fatigue parameters were chosen, for reports.
+#[derive(Debug, Clone, Serialize)]
+pub struct FatigueChoice {
+    /// Named set, or "legacy" for an older task file's k / constant recovery.
+    pub set: String,
+    pub description: String,
+    pub k_source: String,
+    pub recovery_source: String,
+}
+
+/// The optimiser's settings from the task.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectiveSettings {
+    pub discomfort_weight: f64,
+    pub clearance_m: f64,
+    pub balance_margin_m: f64,
+}
+
+/// A validated task.
+#[derive(Debug)]
+pub struct Task {
+    pub name: String,
+    pub path: PathBuf,
+    /// The URDF used (file path, or "generated from worker").
+    pub robot: String,
+    /// The robot and strength files read (for output-safety checks).
+    pub input_files: Vec<PathBuf>,
+    pub model: BodyModel,
+    /// Hand frames (right, left): link index and name; `None` if the body lacks that hand.
+    pub hand_links: [Option<(usize, String)>; 2],
+    pub worker: Worker,
+    pub gravity_m_s2: Vector3<f64>,
+    pub stance: Option<Stance>,
+    /// q indices of joints without muscles.
+    pub unactuated: Vec<usize>,
+    pub half_joints: Vec<HalfJoint>,
+    /// Fatigue parameters per half-joint (same order as `half_joints`).
+    pub fatigue: Vec<MaParams>,
+    pub fatigue_choice: FatigueChoice,
+    /// The parameter set, when the task uses one (for the uncertainty analysis).
+    pub parameter_set: Option<ParameterSet>,
+    pub workstation: Workstation,
+    pub phases: Vec<Phase>,
+    pub cycles: u32,
+    pub rest_s: f64,
+    pub replan_every_cycles: u32,
+    pub replan_every_s: Option<f64>,
+    pub capacity_tolerance: f64,
+    pub objective: ObjectiveSettings,
+}
+
+impl Task {
+    /// Length of one cycle \[s\].
+    pub fn cycle_s(&self) -> f64 {
+        self.phases.iter().map(|p| p.duration_s).sum::<f64>() + self.rest_s
+    }
+    /// Planned duration of the whole task \[s\].
+    pub fn duration_s(&self) -> f64 {
+        self.cycle_s() * self.cycles as f64
+    }
+
+    /// Joint names in q order.
+    pub fn joint_names(&self) -> Vec<String> {
+        (0..self.model.nq())
+            .map(|i| self.model.q_joint(i).name.clone())
+            .collect()
+    }
+
+    /// Half-joint ids in order.
+    pub fn half_joint_ids(&self) -> Vec<String> {
+        self.half_joints.iter().map(|h| h.id.clone()).collect()
+    }
+
+    /// Reads and validates a task file.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, TaskError> {
+        let path = path.as_ref();
+        let p = path.display().to_string();
+        let text = crate::io::read_text(path).map_err(|e| TaskError::Io {
+            path: p.clone(),
+            message: e.to_string(),
+        })?;
+        Self::from_yaml_str(&text, path)
+    }
+
+    /// Parses and validates task YAML; `path` names it in messages and locates a relative robot.
+    pub fn from_yaml_str(text: &str, path: &Path) -> Result<Self, TaskError> {
+        let p = path.display().to_string();
+        let file: TaskFile = serde_saphyr::from_str(text).map_err(|e| TaskError::Parse {
+            path: p.clone(),
+            message: crate::schema::explain_parse_error(&e.to_string()),
+        })?;
+        Self::from_task_file(file, path)
+    }
+
+    /// Validates a parsed task; `path` locates the robot and names the file in messages.
+    pub fn from_task_file(f: TaskFile, path: &Path) -> Result<Self, TaskError> {
+        let p = path.display().to_string();
+        let field = |field: &str, problem: String| TaskError::Field {
+            path: p.clone(),
+            field: field.to_string(),
+            problem,
+        };
+        f.worker
+            .validate()
+            .map_err(|e| field("worker", e.to_string()))?;
+        let gravity = match f.gravity_m_s2 {
+            Some(g) if g.iter().all(|x| x.is_finite()) && Vector3::from(g).norm() <= MAX_GRAVITY_M_S2 => {
+                Vector3::from(g)
+            }
+            Some(g) => {
+                return Err(field(
+                    "gravity_m_s2",
+                    format!("must be finite with a magnitude of at most {MAX_GRAVITY_M_S2} m/s² (3 g), got {g:?}"),
+                ))
+            }
+            None => GRAVITY_M_S2,
+        };
+        let mut input_files = Vec::new();
+        let table_default = StrengthTable::default_table();
+        let (model, robot, table, generated) = match &f.robot {
+            Some(r) => {
+                let urdf = path.parent().unwrap_or(Path::new(".")).join(r);
+                let model =
+                    BodyModel::from_urdf_file(&urdf).map_err(|e| field("robot", e.to_string()))?;
+                input_files.push(urdf.clone());
+                let sp = StrengthTable::path_beside(&urdf);
+                let table = if sp.exists() {
+                    input_files.push(sp.clone());
+                    StrengthTable::from_file(&sp).map_err(|e| field("robot", e.to_string()))?
+                } else {
+                    table_default
+                };
+                let generated = model.links.iter().any(|l| l.name == RIGHT_FOOT_LINK)
+                    && model.q_index("pelvis_tx").is_ok();
+                (model, urdf.display().to_string(), table, generated)
+            }
+            None => {
+                let text = worker_urdf(&f.worker, &table_default)
+                    .map_err(|e| field("worker", e.to_string()))?;
+                let model = BodyModel::from_urdf_str(&text, "generated worker")
+                    .map_err(|e| field("worker", e.to_string()))?;
+                (model, "generated from worker".to_string(), table_default, true)
+            }
+        };
+        if model.nq() == 0 {
+            return Err(field(
+                "robot",
+                "the robot has no moving joints: there is no posture to plan".into(),
+            ));
+        }
+        let hand_names = [
+            f.hand_frame.clone().unwrap_or_else(|| "r_hand_grip".into()),
+            f.left_hand_frame
+                .clone()
+                .unwrap_or_else(|| "l_hand_grip".into()),
+        ];
+        let hand_links = [
+            model.frame_link(&hand_names[0]).ok().map(|l| (l, hand_names[0].clone())),
+            model.frame_link(&hand_names[1]).ok().map(|l| (l, hand_names[1].clone())),
+        ];
+        if hand_links[0].is_none() && (f.hand_frame.is_some() || hand_links[1].is_none()) {
+            let frames: Vec<&str> = model.links.iter().map(|l| l.name.as_str()).collect();
+            return Err(field(
+                "hand_frame",
+                format!(
+                    "'{}' is not a link of the robot{} (links: {})",
+                    hand_names[0],
+                    crate::schema::did_you_mean(&hand_names[0], frames.iter().copied()),
+                    frames.join(", ")
+                ),
+            ));
+        }
+        if f.left_hand_frame.is_some() && hand_links[1].is_none() {
+            return Err(field(
+                "left_hand_frame",
+                format!("'{}' is not a link of the robot", hand_names[1]),
+            ));
+        }
+        let half_joints = resolve_half_joints(&model, &table, &f.worker, &robot)
+            .map_err(|e| field("robot", e.to_string()))?;
+        let unactuated: Vec<usize> = table
+            .unactuated
+            .iter()
+            .filter_map(|j| model.q_index(j).ok())
+            .collect();
+
+        // Stance.
+        let stance = if unactuated.is_empty() {
+            if f.stance.is_some() {
+                return Err(field(
+                    "stance",
+                    "this robot has a fixed base (no unactuated joints in its strength table): it does not stand on feet".into(),
+                ));
+            }
+            None
+        } else {
+            let sf = f.stance.clone().unwrap_or(StanceFile {
+                width_m: None,
+                forward_m: 0.0,
+                toe_out_deg: 0.0,
+                feet: None,
+            });
+            let feet_names = sf
+                .feet
+                .clone()
+                .unwrap_or([LEFT_FOOT_LINK.to_string(), RIGHT_FOOT_LINK.to_string()]);
+            let foot = |i: usize| {
+                Foot::from_link(&model, &feet_names[i]).map_err(|e| {
+                    field(
+                        "stance.feet",
+                        format!("{e} (a floating-base robot stands on two feet)"),
+                    )
+                })
+            };
+            let feet = [foot(0)?, foot(1)?];
+            let width = match sf.width_m {
+                Some(w) if w.is_finite() && (0.05..=1.5).contains(&w) => w,
+                Some(w) => {
+                    return Err(field(
+                        "stance.width_m",
+                        format!("must be within 0.05..1.5 m, got {w}"),
+                    ))
+                }
+                None if generated => 2.0 * worker_geometry(&f.worker).shoulder_half_width_m,
+                None => 0.3,
+            };
+            if !(sf.forward_m.is_finite() && sf.forward_m.abs() <= 2.0) {
+                return Err(field(
+                    "stance.forward_m",
+                    format!("must be within ±2 m, got {}", sf.forward_m),
+                ));
+            }
+            if !(sf.toe_out_deg.is_finite() && (0.0..=45.0).contains(&sf.toe_out_deg)) {
+                return Err(field(
+                    "stance.toe_out_deg",
+                    format!("must be within 0..45°, got {}", sf.toe_out_deg),
+                ));
+            }
+            Some(Stance::new(
+                feet,
+                width,
+                sf.forward_m,
+                sf.toe_out_deg.to_radians(),
+            ))
+        };
+
+        let (fatigue, fatigue_choice, parameter_set) =
+            resolve_fatigue(&f.fatigue, &half_joints, &f.worker, &field)?;
+
+        let workstation = Workstation::new(f.workstation.obstacles)
+            .map_err(|e| field("workstation.obstacles", e.to_string()))?;
+
+        if f.phases.is_empty() {
+            return Err(field("phases", "at least one phase is needed".into()));
+        }
+        if f.phases.len() > MAX_PHASES {
+            return Err(field(
+                "phases",
+                format!("at most {MAX_PHASES} phases per cycle, got {}", f.phases.len()),
+            ));
+        }
+        let mut phases = Vec::with_capacity(f.phases.len());
+        for (i, ph) in f.phases.iter().enumerate() {
+            phases.push(check_phase(i, ph, &hand_links, &gravity, &field)?);
+        }
+        if f.cycles == 0 {
+            return Err(field("cycles", "must be at least 1".into()));
+        }
+        if !(f.rest_s.is_finite() && (0.0..=MAX_DURATION_S).contains(&f.rest_s)) {
+            return Err(field(
+                "rest_s",
+                format!("must be within 0 s and a year, got {}", f.rest_s),
+            ));
+        }
+        let steps = f.cycles as u64 * (phases.len() as u64 + u64::from(f.rest_s > 0.0));
+        if steps > MAX_STEPS {
+            return Err(field(
+                "cycles",
+                format!(
+                    "{} cycles of {} steps make {steps} held steps, more than the {MAX_STEPS} a plan may have (time and memory); plan a shorter stretch or longer phases",
+                    f.cycles,
+                    phases.len() + usize::from(f.rest_s > 0.0)
+                ),
+            ));
+        }
+        let cycle_s: f64 = phases.iter().map(|p| p.duration_s).sum::<f64>() + f.rest_s;
+        if cycle_s * f.cycles as f64 > MAX_DURATION_S {
+            return Err(field(
+                "cycles",
+                format!(
+                    "the task would last {:.0} days; at most a year is planned",
+                    cycle_s * f.cycles as f64 / 86400.0
+                ),
+            ));
+        }
+        if f.replan.every_cycles == 0 {
+            return Err(field("replan.every_cycles", "must be >= 1".into()));
+        }
+        if let Some(s) = f.replan.every_s {
+            if !(s.is_finite() && s > 0.0 && s <= MAX_DURATION_S) {
+                return Err(field(
+                    "replan.every_s",
+                    format!("must be within 0 s and a year, got {s}"),
+                ));
+            }
+        }
+        if !(f.replan.capacity_tolerance.is_finite()
+            && (0.0..1.0).contains(&f.replan.capacity_tolerance))
+        {
+            return Err(field(
+                "replan.capacity_tolerance",
+                format!("must be in [0, 1), got {}", f.replan.capacity_tolerance),
+            ));
+        }
+        let o = &f.objective;
+        if !(o.discomfort_weight.is_finite() && (0.0..=100.0).contains(&o.discomfort_weight)) {
+            return Err(field(
+                "objective.discomfort_weight",
+                format!("must be within 0..100, got {}", o.discomfort_weight),
+            ));
+        }
+        if !(o.clearance_m.is_finite() && (0.0..=0.5).contains(&o.clearance_m)) {
+            return Err(field(
+                "objective.clearance_m",
+                format!("must be within 0..0.5 m, got {}", o.clearance_m),
+            ));
+        }
+        if !(o.balance_margin_m.is_finite() && (0.0..=0.2).contains(&o.balance_margin_m)) {
+            return Err(field(
+                "objective.balance_margin_m",
+                format!("must be within 0..0.2 m, got {}", o.balance_margin_m),
+            ));
+        }
+        Ok(Task {
+            name: f.name,
+            path: path.to_path_buf(),
+            robot,
+            input_files,
+            model,
+            hand_links,
+            worker: f.worker,
+            gravity_m_s2: gravity,
+            stance,
+            unactuated,
+            half_joints,
+            fatigue,
+            fatigue_choice,
+            parameter_set,
+            workstation,
+            phases,
+            cycles: f.cycles,
+            rest_s: f.rest_s,
+            replan_every_cycles: f.replan.every_cycles,
+            replan_every_s: f.replan.every_s,
+            capacity_tolerance: f.replan.capacity_tolerance,
+            objective: ObjectiveSettings {
+                discomfort_weight: o.discomfort_weight,
+                clearance_m: o.clearance_m,
+                balance_margin_m: o.balance_margin_m,
+            },
+        })
+    }
+}
+
+type FieldErr<'a> = dyn Fn(&str, String) -> TaskError + 'a;
+
+fn check_point(v: &[f64; 3], at: &str, field: &FieldErr) -> Result<Vector3<f64>, TaskError> {
+    if v.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE_M) {
+        Ok(Vector3::from(*v))
+    } else {
+        Err(field(
+            at,
+            format!("must be finite and within ±{MAX_COORDINATE_M} m, got {v:?}"),
+        ))
+    }
+}
+
+fn check_phase(
+    i: usize,
+    ph: &PhaseFile,
+    hand_links: &[Option<(usize, String)>; 2],
+    gravity: &Vector3<f64>,
+    field: &FieldErr,
+) -> Result<Phase, TaskError> {
+    let at = |name: &str| format!("phases[{i}] ({}).{name}", ph.name);
+    if !(ph.duration_s.is_finite() && ph.duration_s > 0.0 && ph.duration_s <= MAX_DURATION_S) {
+        return Err(field(
+            &at("duration_s"),
+            format!("must be > 0 s and at most a year, got {}", ph.duration_s),
+        ));
+    }
+    let given = [ph.target_m.is_some(), ph.targets.is_some(), ph.object.is_some()];
+    if given.iter().filter(|g| **g).count() != 1 {
+        return Err(field(
+            &at("target_m"),
+            "give exactly one of target_m (one hand), targets (per hand) or object (both hands)"
+                .into(),
+        ));
+    }
+    let mut targets: [Option<Vector3<f64>>; 2] = [None, None];
+    let mut object = None;
+    if let Some(t) = &ph.target_m {
+        let h = match ph.hand {
+            HandName::Right => 0,
+            HandName::Left => 1,
+        };
+        targets[h] = Some(check_point(t, &at("target_m"), field)?);
+    }
+    if let Some(ts) = &ph.targets {
+        if let Some(t) = &ts.right_m {
+            targets[0] = Some(check_point(t, &at("targets.right_m"), field)?);
+        }
+        if let Some(t) = &ts.left_m {
+            targets[1] = Some(check_point(t, &at("targets.left_m"), field)?);
+        }
+        if targets.iter().all(|t| t.is_none()) {
+            return Err(field(&at("targets"), "give right_m, left_m or both".into()));
+        }
+    }
+    if let Some(o) = &ph.object {
+        let c = check_point(&o.center_m, &at("object.center_m"), field)?;
+        if !(o.grip_width_m.is_finite() && (0.05..=2.0).contains(&o.grip_width_m)) {
+            return Err(field(
+                &at("object.grip_width_m"),
+                format!("must be within 0.05..2 m, got {}", o.grip_width_m),
+            ));
+        }
+        let half = Vector3::new(0.0, o.grip_width_m / 2.0, 0.0);
+        targets = [Some(c - half), Some(c + half)];
+        let size = match o.size_m {
+            Some(s) if s.iter().all(|x| x.is_finite() && *x > 0.0 && *x <= 5.0) => s,
+            Some(s) => {
+                return Err(field(
+                    &at("object.size_m"),
+                    format!("must be within 0..5 m each, got {s:?}"),
+                ))
+            }
+            None => [0.3, o.grip_width_m, 0.25],
+        };
+        object = Some(HeldObject {
+            center_m: o.center_m,
+            size_m: size,
+        });
+    }
+    for h in 0..2 {
+        if targets[h].is_some() && hand_links[h].is_none() {
+            return Err(field(
+                &at("hand"),
+                format!("the robot has no {} hand frame", super::task::HANDS[h]),
+            ));
+        }
+    }
+    let total = match (ph.load_kg, ph.hand_force_n) {
+        (Some(_), Some(_)) => {
+            return Err(field(
+                &at("load_kg"),
+                "give load_kg or hand_force_n, not both".into(),
+            ))
+        }
+        (Some(m), None) if m.is_finite() && (0.0..=MAX_LOAD_KG).contains(&m) => gravity * m,
+        (Some(m), None) => {
+            return Err(field(
+                &at("load_kg"),
+                format!("must be between 0 and {MAX_LOAD_KG} kg, got {m}"),
+            ))
+        }
+        (None, Some(fv)) if fv.iter().all(|x| x.is_finite() && x.abs() <= MAX_HAND_FORCE_N) => {
+            Vector3::from(fv)
+        }
+        (None, Some(fv)) => {
+            return Err(field(
+                &at("hand_force_n"),
+                format!(
+                    "components must be finite and within ±{MAX_HAND_FORCE_N} N, got {fv:?}"
+                ),
+            ))
+        }
+        (None, None) => Vector3::zeros(),
+    };
+    let two = targets[0].is_some() && targets[1].is_some();
+    let left_share = match ph.left_share {
+        Some(s) if !two => {
+            let _ = s;
+            return Err(field(
+                &at("left_share"),
+                "only a two-handed phase shares its load".into(),
+            ));
+        }
+        Some(s) if s.is_finite() && (0.0..=1.0).contains(&s) => s,
+        Some(s) => {
+            return Err(field(
+                &at("left_share"),
+                format!("must be within 0..1, got {s}"),
+            ))
+        }
+        None if two => 0.5,
+        None if targets[1].is_some() => 1.0,
+        None => 0.0,
+    };
+    Ok(Phase {
+        name: ph.name.clone(),
+        targets_m: targets,
+        hand_force_n: [total * (1.0 - left_share), total * left_share],
+        duration_s: ph.duration_s,
+        object,
+    })
+}
+
+fn check_rate(name: &str, v: Option<f64>, positive: bool, field: &FieldErr) -> Result<Option<f64>, TaskError> {
+    use crate::fatigue::ma::{K_MAX_PER_MIN, K_MIN_PER_MIN, R_MAX_PER_MIN};
+    match v {
+        Some(x) if positive && x.is_finite() && (K_MIN_PER_MIN..=K_MAX_PER_MIN).contains(&x) => {
+            Ok(Some(x))
+        }
+        Some(x) if !positive && x.is_finite() && (0.0..=R_MAX_PER_MIN).contains(&x) => Ok(Some(x)),
+        Some(x) => Err(field(
+            name,
+            if positive {
+                format!("must be within {K_MIN_PER_MIN}..{K_MAX_PER_MIN} 1/min, got {x}")
+            } else {
+                format!("must be within 0..{R_MAX_PER_MIN} 1/min, got {x}")
+            },
+        )),
+        None => Ok(None),
+    }
+}
+
+/// Fatigue parameters per half-joint from the task's `fatigue` section.
+fn resolve_fatigue(
+    ff: &FatigueFile,
+    half_joints: &[HalfJoint],
+    worker: &Worker,
+    field: &FieldErr,
+) -> Result<(Vec<MaParams>, FatigueChoice, Option<ParameterSet>), TaskError> {
+    let sets = ParameterSets::shipped();
+    let legacy = ff.parameters.is_none()
+        && ff.recovery.is_none()
+        && (ff.k_per_min.is_some() || ff.recovery_per_min.is_some());
+    let set_name = ff.parameters.clone().unwrap_or(sets.default_set.clone());
+    let set = if legacy {
+        None
+    } else {
+        Some(sets.get(&set_name).cloned().ok_or_else(|| {
+            field(
+                "fatigue.parameters",
+                format!(
+                    "unknown parameter set '{set_name}'{}; choose one of: {}",
+                    crate::schema::did_you_mean(&set_name, sets.names().into_iter()),
+                    sets.names().join(", ")
+                ),
+            )
+        })?)
+    };
+    let k0 = check_rate("fatigue.k_per_min", ff.k_per_min, true, field)?;
+    let r0 = check_rate("fatigue.recovery_per_min", ff.recovery_per_min, false, field)?;
+    let rec_override = match ff.recovery {
+        Some(r) => {
+            let rec = Recovery::Perfusion {
+                rest_per_min: r.rest_per_min,
+                limit_fmvc: r.limit_fmvc,
+            };
+            rec.validate()
+                .map_err(|e| field("fatigue.recovery", e.to_string()))?;
+            Some(rec)
+        }
+        None => None,
+    };
+    for key in ff.overrides.keys() {
+        if !half_joints.iter().any(|h| &h.id == key || &h.region == key) {
+            let names = half_joints
+                .iter()
+                .map(|h| h.region.as_str())
+                .chain(half_joints.iter().map(|h| h.id.as_str()));
+            return Err(field(
+                &format!("fatigue.overrides.{key}"),
+                format!(
+                    "is neither a body region nor a half-joint id of the model{}",
+                    crate::schema::did_you_mean(key, names)
+                ),
+            ));
+        }
+    }
+    let mut out = Vec::with_capacity(half_joints.len());
+    for h in half_joints {
+        let (mut k, mut rec) = match &set {
+            Some(s) => (
+                s.k(&h.region, worker.sex, crate::fatigue::params::Bound::Value),
+                s.recovery.recovery(),
+            ),
+            None => (1.0, Recovery::None),
+        };
+        if let Some(x) = k0 {
+            k = x;
+        }
+        if let Some(r) = r0 {
+            rec = if r == 0.0 {
+                Recovery::None
+            } else {
+                Recovery::Constant { r_per_min: r }
+            };
+        }
+        if let Some(r) = rec_override {
+            rec = r;
+        }
+        for key in [&h.region, &h.id] {
+            if let Some(o) = ff.overrides.get(key) {
+                if let Some(x) = check_rate(
+                    &format!("fatigue.overrides.{key}.k_per_min"),
+                    o.k_per_min,
+                    true,
+                    field,
+                )? {
+                    k = x;
+                }
+                if let Some(x) = check_rate(
+                    &format!("fatigue.overrides.{key}.recovery_per_min"),
+                    o.recovery_per_min,
+                    false,
+                    field,
+                )? {
+                    rec = if x == 0.0 {
+                        Recovery::None
+                    } else {
+                        Recovery::Constant { r_per_min: x }
+                    };
+                }
+            }
+        }
+        out.push(MaParams::with_recovery(k, rec).map_err(|e| field("fatigue", e.to_string()))?);
+    }
+    let choice = match &set {
+        Some(s) => FatigueChoice {
+            set: s.name.clone(),
+            description: s.description.clone(),
+            k_source: s.k_source.clone(),
+            recovery_source: match s.recovery {
+                crate::fatigue::params::RecoverySpec::None => "no recovery (Ma et al. 2009)".into(),
+                _ => sets
+                    .recovery_sources
+                    .values()
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            },
+        },
+        None => FatigueChoice {
+            set: "legacy".into(),
+            description: "an older task file's single k and constant recovery rate (acting under load as at rest)".into(),
+            k_source: "task file".into(),
+            recovery_source: "task file (constant rate)".into(),
+        },
+    };
+    Ok((out, choice, set))
+}
