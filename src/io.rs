@@ -260,3 +260,58 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
     set.add("output", path, bytes.to_vec());
     set.write_all()
 }
+
+/// A large output written as it is produced: to a temporary file beside the target, renamed
+/// into place by [`TempOutput::commit`] (dropped without commit: removed). Check the target with
+/// an [`OutputSet`] first.
+pub struct TempOutput {
+    tmp: PathBuf,
+    target: PathBuf,
+    path: PathBuf,
+    file: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl TempOutput {
+    /// Opens the temporary file for `path` (through a symlink, at its target).
+    pub fn beside(path: &Path) -> Result<Self, IoError> {
+        let target = OutputSet::target(path)?;
+        let dir = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let name = target.file_name().unwrap_or_default().to_string_lossy().to_string();
+        let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+        let f = std::fs::File::create(&tmp).map_err(|e| write_err(path, e.to_string()))?;
+        Ok(TempOutput {
+            tmp,
+            target: target.clone(),
+            path: path.to_path_buf(),
+            file: Some(std::io::BufWriter::with_capacity(1 << 16, f)),
+        })
+    }
+
+    /// Where to write.
+    pub fn writer(&mut self) -> &mut dyn Write {
+        self.file.as_mut().expect("open until commit")
+    }
+
+    /// Flushes and renames the file into place.
+    pub fn commit(mut self) -> Result<(), IoError> {
+        let f = self.file.take().expect("open until commit");
+        let r = f
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .and_then(|f| f.sync_all())
+            .and_then(|_| std::fs::rename(&self.tmp, &self.target));
+        if r.is_err() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+        r.map_err(|e| write_err(&self.path, e.to_string()))
+    }
+}
+
+impl Drop for TempOutput {
+    fn drop(&mut self) {
+        if self.file.is_some() {
+            self.file = None;
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}

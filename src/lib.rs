@@ -57,12 +57,16 @@
 //! assert!(rest.model.rest_s_per_cycle.unwrap() <= task.rest_s);
 //! ```
 
+pub mod assess;
 pub mod body;
 pub mod error;
 pub mod fatigue;
 pub mod io;
 pub mod plan;
+pub mod report;
+pub mod record;
 pub mod schema;
+pub mod study;
 pub mod validation;
 pub mod workstation;
 

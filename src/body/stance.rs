@@ -4,7 +4,8 @@
 //! A body with a floating base (unactuated root joints) stands when the floor's reactions at
 //! the two soles balance gravity and the hand loads. Two feet make the reaction statically
 //! indeterminate; posture-opt splits it **by where the centre of pressure lies between the
-//! feet**, as 3DSSPP does:
+//! feet**, as 3DSSPP does, and directs each foot's force toward a common point above the feet,
+//! as the ground reactions of standing people converge near the centre of mass:
 //!
 //! 1. the total reaction `(F, M)` about the world origin is minus the sum of gravity and the hand
 //!    loads; its centre of pressure on the floor is `p = (−M_y/F_z, M_x/F_z)` and the free moment
@@ -12,14 +13,24 @@
 //! 2. `s`, the share of the left foot, is the position of `p` projected on the segment from the
 //!    right sole centre `c_R` to the left one `c_L` (clamped to 0..1) — the lever rule of a beam on
 //!    two supports;
-//! 3. each foot carries its share of the force and of the free moment, at its own centre of
-//!    pressure `c_i + δ`, where `δ = p − (s c_L + (1 − s) c_R)` is the part of `p` off that segment.
+//! 3. each foot carries its share of the vertical load and of the free moment at its own centre
+//!    of pressure `p_i = c_i + δ`, where `δ = p − (s c_L + (1 − s) c_R)` is the part of `p` off that
+//!    segment, and its force points from `p_i` to the point `A = p + F·h/F_z` of the resultant's
+//!    line of action at the height `h` of the centre of mass: `F_i = s_i F_z (A − p_i)/h`.
 //!
-//! The reactions then balance the body exactly (`Σ` forces and moments vanish), so the torques
-//! of the unactuated root joints are zero — a check the tests make against Pinocchio's inverse
-//! dynamics with the same foot forces. Balance: `p` must lie inside the support polygon, the convex
-//! hull of both soles, by a margin. For loads that hang from the hands (`F` vertical) `p` is the
-//! floor projection of the centre of mass of body and load together.
+//! 4. what statics leaves open between two feet — how hard they push toward or away from each
+//!    other along the line joining them — is settled as the body does with least effort: the
+//!    internal force `λ e` (`e` the horizontal unit vector from the right to the left sole, `+λe`
+//!    on the left foot, `−λe` on the right) minimises the sum of squared torques of the joints
+//!    that carry a foot ([`settle_internal_force`]); it changes no torque above the pelvis.
+//!
+//! The reactions then balance the body exactly (`Σ F_i = F` and `Σ p_i × F_i = p × F`), so the
+//! torques of the unactuated root joints vanish — a check the tests make against Pinocchio's
+//! inverse dynamics with the same foot forces. With the feet apart, the forces lean inward toward
+//! the body instead of standing vertical, as measured ground reactions do, which keeps a wide
+//! stance from loading the hips sideways. Balance: `p` must lie inside the support polygon, the
+//! convex hull of both soles, by a margin. For loads that hang from the hands (`F` vertical) `p` is
+//! the floor projection of the centre of mass of body and load together.
 
 use super::model::{BodyError, BodyModel};
 use super::statics::{PointLoad, StaticsData};
@@ -216,8 +227,22 @@ pub fn ground_reaction(
         Vector3::new(cl.x + delta.x, cl.y + delta.y, 0.0),
         Vector3::new(cr.x + delta.x, cr.y + delta.y, 0.0),
     ];
+    // the common point on the resultant's line of action, at the centre of mass's height
+    let h = data.com_m.z.max(0.05);
+    let apex = if supported {
+        Vector3::new(p.x, p.y, 0.0) + fg * (h / fg.z)
+    } else {
+        Vector3::new(p.x, p.y, h)
+    };
+    let force = |i: usize| {
+        if supported {
+            shares[i] * fg.z * (apex - cop[i]) / h
+        } else {
+            shares[i] * fg
+        }
+    };
     GroundReaction {
-        force_n: [shares[0] * fg, shares[1] * fg],
+        force_n: [force(0), force(1)],
         cop_m: cop,
         free_moment_nm: [shares[0] * t_z, shares[1] * t_z],
         cop_total_m: p,
@@ -245,6 +270,57 @@ pub fn foot_loads(
         }
     };
     [load(0), load(1)]
+}
+
+/// Settles the internal force between the feet (step 4 of the module docs): after
+/// [`super::statics::apply_loads`] with [`foot_loads`] of `r`, shifts `λ e` to minimise the sum
+/// of squared torques of the `actuated` joints that carry a foot, and updates the torques in
+/// `data` and the forces in `r`. `jac` is scratch (3×nq). Returns λ \[N\].
+pub fn settle_internal_force(
+    model: &BodyModel,
+    data: &mut StaticsData,
+    stance: &Stance,
+    r: &mut GroundReaction,
+    actuated: &[bool],
+    jac: &mut nalgebra::Matrix3xX<f64>,
+) -> f64 {
+    let nq = model.nq();
+    let sole = |data: &StaticsData, i: usize| {
+        let f = &stance.feet[i];
+        data.link_point(model, f.link, &f.sole_center_in_link_m)
+    };
+    let d = sole(data, 0) - sole(data, 1);
+    let d = Vector3::new(d.x, d.y, 0.0);
+    if d.norm() < 1e-9 {
+        return 0.0;
+    }
+    let e = d / d.norm();
+    // g_k = ∂τ_k/∂λ = −J_L,kᵀ e + J_R,kᵀ e (at each foot's centre of pressure)
+    let mut g = vec![0.0; nq];
+    for (i, sign) in [(0usize, -1.0), (1usize, 1.0)] {
+        data.point_jacobian(model, stance.feet[i].link, &r.cop_m[i], jac);
+        for (k, gk) in g.iter_mut().enumerate() {
+            *gk += sign * e.dot(&jac.column(k).into_owned());
+        }
+    }
+    let (mut num, mut den) = (0.0, 0.0);
+    for k in 0..nq {
+        if actuated[k] {
+            num += g[k] * data.tau_nm[k];
+            den += g[k] * g[k];
+        }
+    }
+    if den <= 1e-18 {
+        return 0.0;
+    }
+    let lambda = -num / den;
+    for (k, gk) in g.iter().enumerate() {
+        data.tau_nm[k] += lambda * gk;
+        data.tau_load_nm[k] += lambda * gk;
+    }
+    r.force_n[0] += lambda * e;
+    r.force_n[1] -= lambda * e;
+    lambda
 }
 
 /// d(centre of pressure)/dq (2×nq, into `out`) for fixed hand forces: from the centre of mass's

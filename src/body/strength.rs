@@ -385,8 +385,10 @@ pub struct HalfJoint {
     pub region: String,
     /// MVC at the reference posture \[N·m\] for this worker.
     pub mvc_nm: f64,
-    /// Population mean and SD of this sex at the reference posture \[N·m\] (for % capable).
-    pub population: MeanSd,
+    /// Population mean and SD of men and of women at the reference posture \[N·m\]
+    /// (for % capable; equal for a URDF-effort fallback).
+    pub male: MeanSd,
+    pub female: MeanSd,
     #[serde(skip)]
     pub posture: Vec<PostureFactor>,
     pub source: String,
@@ -505,7 +507,8 @@ pub fn resolve_half_joints(
                         },
                         region: e.region.clone(),
                         mvc_nm: e.mvc_at_percentile(w.sex, w.strength_percentile),
-                        population: e.stats(w.sex),
+                        male: e.male,
+                        female: e.female,
                         posture,
                         source: e.source.clone(),
                     }
@@ -526,7 +529,11 @@ pub fn resolve_half_joints(
                     ),
                     region: "general".into(),
                     mvc_nm: j.effort,
-                    population: MeanSd {
+                    male: MeanSd {
+                        mean_nm: j.effort,
+                        sd_nm: 0.0,
+                    },
+                    female: MeanSd {
                         mean_nm: j.effort,
                         sd_nm: 0.0,
                     },

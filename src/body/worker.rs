@@ -32,13 +32,22 @@ use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
 /// Sex of a worker, for anthropometry and strength.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum, schemars::JsonSchema,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Sex {
     Male,
     Female,
+}
+
+impl std::str::FromStr for Sex {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "male" => Ok(Sex::Male),
+            "female" => Ok(Sex::Female),
+            _ => Err(format!("'{s}' is not a sex: give male or female")),
+        }
+    }
 }
 
 impl Sex {

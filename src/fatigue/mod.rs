@@ -8,6 +8,7 @@
 //!   [`units`] only.
 
 pub mod dual;
+pub mod fit;
 pub mod held_load;
 pub mod ma;
 pub mod met_models;

@@ -104,6 +104,54 @@ impl ParameterSets {
     }
 }
 
+impl ParameterSet {
+    /// Reads and checks a parameter set written as YAML (e.g. by `posture-opt fit`): every
+    /// region known, every k and its range within the model's limits (low ≤ value ≤ high), the
+    /// recovery's values within theirs. `origin` names the text in messages.
+    pub fn from_yaml_str(text: &str, origin: &str) -> Result<Self, String> {
+        use super::ma::{K_MAX_PER_MIN, K_MIN_PER_MIN, R_MAX_PER_MIN};
+        let set: ParameterSet = serde_saphyr::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+        let known = super::fit::REGIONS;
+        let k_ok = |v: f64| v.is_finite() && (K_MIN_PER_MIN..=K_MAX_PER_MIN).contains(&v);
+        for (scope, map) in [("regions", &set.regions), ("female", &set.female), ("male", &set.male)] {
+            for (name, r) in map {
+                if !known.contains(&name.as_str()) {
+                    return Err(format!(
+                        "{origin}: {scope}.{name} is not a body region ({}){}",
+                        known.join(", "),
+                        crate::schema::did_you_mean(name, known.iter().copied())
+                    ));
+                }
+                if !(k_ok(r.k) && k_ok(r.k_low) && k_ok(r.k_high) && r.k_low <= r.k && r.k <= r.k_high) {
+                    return Err(format!(
+                        "{origin}: {scope}.{name}: need {K_MIN_PER_MIN} <= k_low <= k <= k_high <= {K_MAX_PER_MIN} 1/min, got {} <= {} <= {}",
+                        r.k_low, r.k, r.k_high
+                    ));
+                }
+            }
+        }
+        if let RecoverySpec::Perfusion {
+            rest_per_min,
+            rest_low,
+            rest_high,
+            limit_fmvc,
+            limit_low,
+            limit_high,
+        } = set.recovery
+        {
+            let r_ok = |v: f64| v.is_finite() && (0.0..=R_MAX_PER_MIN).contains(&v);
+            let l_ok = |v: f64| v.is_finite() && (0.01..=1.0).contains(&v);
+            if !(r_ok(rest_per_min) && r_ok(rest_low) && r_ok(rest_high) && rest_low <= rest_per_min && rest_per_min <= rest_high) {
+                return Err(format!("{origin}: recovery: need 0 <= rest_low <= rest_per_min <= rest_high <= {R_MAX_PER_MIN} 1/min"));
+            }
+            if !(l_ok(limit_fmvc) && l_ok(limit_low) && l_ok(limit_high) && limit_low <= limit_fmvc && limit_fmvc <= limit_high) {
+                return Err(format!("{origin}: recovery: need 0.01 <= limit_low <= limit_fmvc <= limit_high <= 1"));
+            }
+        }
+        Ok(set)
+    }
+}
+
 /// Where a parameter at one end of its range is taken, for the uncertainty analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]

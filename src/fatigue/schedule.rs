@@ -279,6 +279,51 @@ pub fn repeated_cycles<T: Real>(
     }
 }
 
+/// The lowest capacity a group reaches at the end of the steps marked in `mask` over
+/// `n_cycles` repetitions (capacity falls through a loaded step, so a step's end is its lowest
+/// point; across cycles the capacity at a given step moves monotonically toward its periodic
+/// steady state, so the first and the last cycle bound it). With its derivatives when `T` is
+/// [`Dual2`](super::dual::Dual2).
+pub fn lowest_end_capacity<T: Real>(
+    p: &MaParams,
+    steps: &[HeldStep<T>],
+    mask: &[bool],
+    c0: f64,
+    n_cycles: u64,
+) -> T {
+    let cycle = Cycle {
+        steps: steps.iter().map(|s| Prepared::new(p, s)).collect(),
+    };
+    let mut a_map = T::cst(1.0);
+    let mut b_map = T::cst(0.0);
+    let mut ln_a = T::cst(0.0);
+    for s in &cycle.steps {
+        a_map = a_map * s.s;
+        b_map = b_map * s.s + s.a * (-s.s + 1.0);
+        ln_a = ln_a - s.lt;
+    }
+    let first = T::cst(c0);
+    let last = if n_cycles <= 1 || -ln_a.val() <= 0.0 {
+        first
+    } else if cycle.steps.iter().all(|s| s.no_recovery) {
+        (ln_a * (n_cycles - 1) as f64).exp() * c0
+    } else {
+        let c_star = b_map / (-a_map + 1.0);
+        c_star + (first - c_star) * (ln_a * (n_cycles - 1) as f64).exp()
+    };
+    let mut lowest = T::cst(f64::INFINITY);
+    for start in [first, last] {
+        let mut c = start;
+        for (s, m) in cycle.steps.iter().zip(mask) {
+            c = s.apply(c).0;
+            if *m && c.val() < lowest.val() {
+                lowest = c;
+            }
+        }
+    }
+    lowest
+}
+
 /// Without recovery: `u(c) = u(1)/c²`, `c_n = c_0 Aⁿ`, total `u(1)/c0² · (e^{2NL} − 1)/(e^{2L} − 1)`.
 fn no_recovery_total<T: Real>(
     cycle: &Cycle<T>,

@@ -23,17 +23,21 @@
 //! range and rises as `((0.1 − u)/0.1)³` toward each limit (`u` the position in the range, 0..1),
 //! replacing Marler's steeper `[0.5 sin(…) + 0.5]¹⁰⁰` bumps by a C² polynomial the SQP can
 //! follow. The task's discomfort is the mean over the cycle's phases, times the task's
-//! `discomfort_weight` (default 0.5): in a one-phase task, one joint driven from mid-range to its
-//! limit costs as much as about 60 % more fatigue (J is the logarithm of the total), 30° of trunk
-//! twist about 6 %, 20° of sideways bend about 4 %.
+//! `discomfort_weight` (default 0.1): in a one-phase task, one joint driven from mid-range to its
+//! limit costs as much as about 10 % more fatigue (J is the logarithm of the total), 30° of trunk
+//! twist about 1.2 %.
 
 use super::task::Task;
 use crate::fatigue::dual::Dual2;
-use crate::fatigue::schedule::{repeated_cycles, HeldStep};
+use crate::fatigue::schedule::{lowest_end_capacity, repeated_cycles, HeldStep};
 use crate::fatigue::MaState;
 
 /// ε of `J = ln(S + ε)` \[min\].
 pub const EPSILON_U_MIN: f64 = 1e-3;
+
+/// The plan keeps every load this far below the lowest capacity its group reaches (fraction of
+/// MVC), so that a plan at the edge does not tip into exhaustion.
+pub const EXHAUSTION_MARGIN: f64 = 0.02;
 
 /// Fraction of a joint's range, at each end, where the end-of-range penalty acts.
 pub const END_ZONE: f64 = 0.1;
@@ -44,6 +48,11 @@ pub trait LoadCost {
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64;
     /// Value only.
     fn value(&mut self, f: &[f64]) -> f64;
+    /// The load half-joint `h` may hold in this phase without being exhausted (its lowest
+    /// capacity over the task) and the bound's slope in its load here; `None`: no bound.
+    fn capacity_bound(&mut self, _h: usize, _f: f64) -> Option<(f64, f64)> {
+        None
+    }
 }
 
 /// The fatigue cost of one phase (a group of phases sharing a posture) over the remaining task.
@@ -178,6 +187,30 @@ fn log_sum(terms: &[(f64, f64)], weights: &mut [f64]) -> f64 {
 }
 
 impl LoadCost for FatigueCost<'_> {
+    fn capacity_bound(&mut self, h: usize, f: f64) -> Option<(f64, f64)> {
+        self.scratch.clear();
+        for (s, &t_min) in self.step_t_min.iter().enumerate() {
+            let load = if self.in_group[s] {
+                Dual2::variable(f)
+            } else {
+                Dual2 {
+                    v: self.step_loads[h][s],
+                    d: 0.0,
+                    dd: 0.0,
+                }
+            };
+            self.scratch.push(HeldStep { f: load, t_min });
+        }
+        let c = lowest_end_capacity(
+            &self.task.fatigue[h],
+            &self.scratch,
+            &self.in_group,
+            self.state[h].capacity,
+            self.cycles,
+        );
+        Some((c.v - EXHAUSTION_MARGIN, c.d))
+    }
+
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64 {
         let n = f.len();
         let mut terms = Vec::with_capacity(n);

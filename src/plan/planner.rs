@@ -17,7 +17,8 @@
 //! the last plan, with the remaining task as horizon.
 //!
 //! **Baselines**, all held for the whole task and evaluated with the same exact simulation:
-//! fatigue-unaware (the same optimiser with fresh capacities and a one-cycle horizon), minimum
+//! fatigue-unaware (the same optimiser with fresh capacities and a one-cycle horizon, started
+//! from the plan's first postures), minimum
 //! joint load (sum of squared relative loads), and the nearest-to-neutral posture reaching the
 //! targets (discomfort only).
 
@@ -41,7 +42,8 @@ pub enum PlanError {
 /// How to plan.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlanOptions {
-    /// Re-plan as capacity falls (false: the fatigue-unaware baseline is the plan).
+    /// Re-plan as capacity falls (false: the first plan, optimal for the whole task with each
+    /// phase's posture held throughout, is held).
     pub adapt: bool,
     /// Minimise fatigue only (no discomfort term).
     pub fatigue_only: bool,
@@ -77,6 +79,8 @@ pub struct Planner<'t> {
     rest_loads: Vec<f64>,
     rest_solve: SqpOutcome,
     qp_solves_before: u64,
+    /// The first plan's postures (the fatigue-unaware baseline starts from them).
+    first_plan: Option<GroupPostures>,
 }
 
 /// Postures of every group, with their solve records.
@@ -114,6 +118,7 @@ impl<'t> Planner<'t> {
             hand_force_n: [Vector3::zeros(); 2],
             discomfort_weight: 1.0,
             capacity: &ones,
+            memory: None,
         };
         let mut q_rest = vec![0.0; task.model.nq()];
         let zero = q_rest.clone();
@@ -131,6 +136,7 @@ impl<'t> Planner<'t> {
             groups,
             rest_loads,
             rest_solve,
+            first_plan: None,
         })
     }
 
@@ -214,6 +220,7 @@ impl<'t> Planner<'t> {
                     hand_force_n: rep.hand_force_n,
                     discomfort_weight: self.group_weight(g, fatigue_only),
                     capacity: &capacity,
+                    memory: Some(g),
                 };
                 let start = gp.q[g].clone();
                 let mut q = start.clone();
@@ -265,6 +272,7 @@ impl<'t> Planner<'t> {
                 hand_force_n: rep.hand_force_n,
                 discomfort_weight: weight,
                 capacity: &big,
+                memory: None,
             };
             let mut cost = cost_of();
             let mut q = gp.q[g].clone();
@@ -303,11 +311,8 @@ impl<'t> Planner<'t> {
         self.qp_solves_before = self.solver.work.qp.solves;
         self.solver.settings = opts.sqp;
         self.solver.work.settings = opts.sqp;
-        let (gp, passes) = if opts.adapt {
-            self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?
-        } else {
-            self.initial(&fresh, 1, opts.fatigue_only)?
-        };
+        let (gp, passes) = self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?;
+        self.first_plan = Some(gp.clone());
         let mut plan = self.simulate(gp, passes, opts)?;
         if opts.baselines {
             plan.summary.baselines = self.baselines(&plan, opts)?;
@@ -325,11 +330,10 @@ impl<'t> Planner<'t> {
             ..opts
         };
         let mut out = Vec::new();
-        let blind = if opts.adapt {
-            let (gp, passes) = self.initial(&fresh, 1, opts.fatigue_only)?;
+        let blind = {
+            let mut gp = self.first_plan.clone().expect("the main plan was made first");
+            let passes = self.optimise(&mut gp, &fresh, 1, opts.fatigue_only, false, MAX_PASSES)?;
             Some(self.simulate(gp, passes, held)?)
-        } else {
-            None
         };
         let weight_free = 0.0;
         let gp = self.solve_independent(&mut || Box::new(SquaredLoads), weight_free)?;

@@ -4,7 +4,7 @@
 //! first derivatives for the optimiser.
 
 use super::task::Task;
-use crate::body::stance::{cop_jacobian, foot_loads, ground_reaction, GroundReaction};
+use crate::body::stance::{cop_jacobian, foot_loads, ground_reaction, settle_internal_force, GroundReaction};
 use crate::body::statics::{apply_loads, forward_kinematics, holding_torque_derivative, mass_moments};
 use crate::body::{JointKind, PointLoad, StaticsData};
 use crate::workstation::Clearance;
@@ -223,6 +223,8 @@ pub struct PostureWork {
     q_scratch: Vec<f64>,
     pub contacts: Vec<Contact>,
     scratch: Vec<Clearance>,
+    /// Whether each joint has muscles.
+    actuated: Vec<bool>,
 }
 
 /// Finite-difference step for ∂τ/∂q on standing bodies \[rad or m\].
@@ -246,6 +248,7 @@ impl PostureWork {
             q_scratch: vec![0.0; nq],
             contacts: Vec::with_capacity(64),
             scratch: Vec::with_capacity(16),
+            actuated: (0..nq).map(|k| !task.unactuated.contains(&k)).collect(),
         }
     }
 
@@ -267,13 +270,19 @@ impl PostureWork {
         self.loads.clear();
         self.loads.extend_from_slice(&self.hands[..self.n_hands]);
         self.ground = None;
+        let mut ground = None;
         if let Some(st) = &task.stance {
             let g = ground_reaction(m, &self.data, st, &self.hands[..self.n_hands], &task.gravity_m_s2);
             let feet = foot_loads(m, &self.data, st, &g);
             self.loads.extend_from_slice(&feet);
-            self.ground = Some(g);
+            ground = Some(g);
         }
         apply_loads(m, &mut self.data, &self.loads, &task.gravity_m_s2);
+        if let (Some(st), Some(mut g)) = (&task.stance, ground) {
+            settle_internal_force(m, &mut self.data, st, &mut g, &self.actuated, &mut self.jac);
+            ground = Some(g);
+        }
+        self.ground = ground;
     }
 
     /// Relative loads of every half-joint after [`PostureWork::statics`].

@@ -69,7 +69,7 @@ pub struct Steps {
 }
 
 /// When a muscle group can no longer hold its load.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Exhaustion {
     pub t_s: f64,
     pub half_joint: String,

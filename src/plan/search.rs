@@ -59,6 +59,8 @@ pub struct PhaseSolver<'t> {
     pub settings: SqpSettings,
     /// Standing at rest (set by the planner).
     pub q_rest: Vec<f64>,
+    /// Curvature learnt per phase key (see [`PhaseSpec::memory`]).
+    curvature: std::collections::HashMap<usize, Vec<f64>>,
 }
 
 /// A phase to solve: targets, hand forces, and how its cost is weighed.
@@ -67,6 +69,9 @@ pub struct PhaseSpec<'a> {
     pub hand_force_n: [Vector3<f64>; 2],
     pub discomfort_weight: f64,
     pub capacity: &'a [f64],
+    /// A key under which the solver keeps this phase's learnt curvature between solves (the
+    /// group index); `None` keeps nothing.
+    pub memory: Option<usize>,
 }
 
 fn set(task: &Task, q: &mut [f64], name: &str, v: f64) {
@@ -89,6 +94,7 @@ impl<'t> PhaseSolver<'t> {
             search: SearchSettings::default(),
             settings,
             q_rest: vec![0.0; task.model.nq()],
+            curvature: std::collections::HashMap::new(),
         })
     }
 
@@ -239,6 +245,7 @@ impl<'t> PhaseSolver<'t> {
         settings: SqpSettings,
     ) -> Result<SqpOutcome, QpError> {
         self.work.settings = settings;
+        let mut memory = spec.memory.map(|k| self.curvature.remove(&k).unwrap_or_default());
         let mut prob = PhaseProblem {
             targets_m: spec.targets_m,
             hand_force_n: spec.hand_force_n,
@@ -246,8 +253,12 @@ impl<'t> PhaseSolver<'t> {
             discomfort: &self.discomfort,
             discomfort_weight: spec.discomfort_weight,
             capacity: spec.capacity,
+            curvature: memory.as_mut(),
         };
         let r = solve_phase(self.task, &self.scene, &mut self.pw, &mut self.work, &mut prob, q);
+        if let (Some(k), Some(m)) = (spec.memory, memory) {
+            self.curvature.insert(k, m);
+        }
         self.work.settings = self.settings;
         r
     }

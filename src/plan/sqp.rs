@@ -120,6 +120,9 @@ pub struct PhaseProblem<'a> {
     pub discomfort_weight: f64,
     /// Capacity bound per half-joint (the load it may hold).
     pub capacity: &'a [f64],
+    /// Curvature learnt by an earlier solve of this phase (n × n), reused as the start and
+    /// updated with this solve's; `None` starts from scratch.
+    pub curvature: Option<&'a mut Vec<f64>>,
 }
 
 /// Buffers and the QP of one task.
@@ -258,12 +261,15 @@ fn merit(
     let margin = pw.ground.map(|g| g.margin_m).unwrap_or(f64::INFINITY);
     let bal_viol = (task.objective.balance_margin_m - margin).max(0.0);
     let geo = clear_viol.max(bal_viol);
-    let cap = work
-        .f
-        .iter()
-        .zip(prob.capacity)
-        .map(|(f, c)| (f - c).max(0.0))
-        .fold(0.0, f64::max);
+    let mut cap = 0.0f64;
+    for (h, &f) in work.f.iter().enumerate() {
+        let bound = match prob.cost.capacity_bound(h, f) {
+            Some((c, _)) => c.min(prob.capacity[h]),
+            None => prob.capacity[h],
+        };
+        cap = cap.max(f - bound);
+    }
+    let cap = cap.max(0.0);
     Merit {
         phi: j + s.mu_eq * eq_l1 + s.mu_geo * geo + s.mu_cap * cap,
         j,
@@ -326,7 +332,7 @@ fn build_qp(
     for k in 0..n {
         qp.q[c.dq + k] = work.dq_grad[k];
     }
-    let mut cap_order: Vec<(f64, usize)> = Vec::with_capacity(task.half_joints.len());
+    let mut cap_order: Vec<(f64, usize, f64, f64)> = Vec::with_capacity(task.half_joints.len());
     for (h, hj) in task.half_joints.iter().enumerate() {
         let Some(row) = scene.actuated_row[hj.q_index] else {
             continue;
@@ -347,7 +353,11 @@ fn build_qp(
                 qp.q[c.dq + k] -= work.grad[h] * s_bar * dm / (mvc * mvc);
             }
         }
-        cap_order.push((work.f[h] - prob.capacity[h], h));
+        let (bound, slope) = match prob.cost.capacity_bound(h, work.f[h]) {
+            Some((c, d)) if c < prob.capacity[h] => (c, d),
+            _ => (prob.capacity[h], 0.0),
+        };
+        cap_order.push((work.f[h] - bound, h, bound, slope));
     }
     // Capacity rows for the half-joints closest to (or beyond) their capacity.
     cap_order.sort_by(|a, b| b.0.total_cmp(&a.0));
@@ -355,15 +365,16 @@ fn build_qp(
         let rr = r.cap + row;
         qp.set_a(rr, c.v_cap, -1.0);
         match cap_order.get(row) {
-            Some(&(_, h)) => {
+            Some(&(_, h, bound, slope)) => {
+                // f − c(f) ≤ 0 linearised at f̄: (1 − c′) f ≤ c(f̄) − c′ f̄
                 let hj = &task.half_joints[h];
                 let srow = scene.actuated_row[hj.q_index].unwrap_or(0);
                 let col = match hj.direction {
                     Direction::Positive => c.s_plus + srow,
                     Direction::Negative => c.s_minus + srow,
                 };
-                qp.set_a(rr, col, 1.0 / hj.mvc_at(q));
-                qp.b[rr] = prob.capacity[h];
+                qp.set_a(rr, col, (1.0 - slope) / hj.mvc_at(q));
+                qp.b[rr] = bound - slope * work.f[h];
             }
             None => qp.b[rr] = 1.0,
         }
@@ -607,6 +618,12 @@ pub fn solve_phase(
     let mut out = SqpOutcome::default();
     let mut m0 = merit(task, scene, pw, work, prob, q);
     reset_curvature(work);
+    if let Some(c) = prob.curvature.as_deref() {
+        if c.len() == work.bfgs.len() {
+            work.bfgs.copy_from_slice(c);
+            work.first_update = false;
+        }
+    }
     work.reset_once = false;
     loop {
         build_qp(task, scene, pw, work, prob, q);
@@ -707,6 +724,10 @@ pub fn solve_phase(
             out.stop = Stop::LineSearch;
             break;
         }
+    }
+    if let Some(c) = prob.curvature.as_deref_mut() {
+        c.clear();
+        c.extend_from_slice(&work.bfgs);
     }
     let m = merit(task, scene, pw, work, prob, q);
     out.objective = m.j;

@@ -78,6 +78,46 @@ pub struct TaskFile {
     /// What the optimiser weighs besides fatigue.
     #[serde(default)]
     pub objective: ObjectiveFile,
+    /// Lifts for the NIOSH lifting equation: which phases a lift starts and ends in.
+    #[serde(default)]
+    pub lifts: Vec<LiftFile>,
+}
+
+/// Hand-to-object coupling (NIOSH's classes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum CouplingName {
+    Good,
+    #[default]
+    Fair,
+    Poor,
+}
+
+/// A lift of the task, for the revised NIOSH lifting equation.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LiftFile {
+    pub name: String,
+    /// The phase where the lift starts (the hands take the load).
+    pub origin: String,
+    /// The phase where it ends.
+    pub destination: String,
+    /// Hand-to-object coupling (default fair).
+    #[serde(default)]
+    pub coupling: CouplingName,
+    /// The load must be placed with control at the destination (default false).
+    #[serde(default)]
+    pub control_at_destination: bool,
+}
+
+/// A checked lift: phase indices.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lift {
+    pub name: String,
+    pub origin: usize,
+    pub destination: usize,
+    pub coupling: CouplingName,
+    pub control_at_destination: bool,
 }
 
 /// Stance on both feet.
@@ -179,7 +219,7 @@ pub struct ReplanFile {
     /// ... or every this many seconds (whichever is given; cycles if both).
     #[serde(default)]
     pub every_s: Option<f64>,
-    /// ... and only when some capacity moved by more than this since the last plan (default 0.02).
+    /// ... and only when some capacity moved by more than this since the last plan (default 0.05).
     #[serde(default = "default_capacity_tolerance")]
     pub capacity_tolerance: f64,
 }
@@ -188,7 +228,7 @@ fn one() -> u32 {
     1
 }
 fn default_capacity_tolerance() -> f64 {
-    0.02
+    0.05
 }
 
 impl Default for ReplanFile {
@@ -212,6 +252,10 @@ pub struct FatigueFile {
     /// Named parameter set: `default-2026`, `frey-law-avin-2010` or `ma2009`.
     #[serde(default)]
     pub parameters: Option<String>,
+    /// A parameter set in a file (relative to the task file), e.g. written by `posture-opt fit`;
+    /// instead of `parameters`.
+    #[serde(default)]
+    pub parameters_file: Option<String>,
     /// Fatigue rate k \[1/min\] for every muscle group (0.01..20).
     #[serde(default)]
     pub k_per_min: Option<f64>,
@@ -251,7 +295,7 @@ pub struct FatigueOverride {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectiveFile {
-    /// Weight of the joint-range discomfort term (0 = fatigue only; default 0.5, 0..100).
+    /// Weight of the joint-range discomfort term (0 = fatigue only; default 0.1, 0..100).
     #[serde(default = "default_discomfort")]
     pub discomfort_weight: f64,
     /// Smallest distance between the body and an obstacle \[m\] (default 0.01, 0..0.5).
@@ -264,7 +308,7 @@ pub struct ObjectiveFile {
 }
 
 fn default_discomfort() -> f64 {
-    0.5
+    0.1
 }
 fn default_clearance() -> f64 {
     0.01
@@ -386,6 +430,7 @@ pub struct Task {
     pub replan_every_s: Option<f64>,
     pub capacity_tolerance: f64,
     pub objective: ObjectiveSettings,
+    pub lifts: Vec<Lift>,
 }
 
 impl Task {
@@ -583,8 +628,27 @@ impl Task {
             ))
         };
 
+        let file_set = match &f.fatigue.parameters_file {
+            Some(name) => {
+                if f.fatigue.parameters.is_some() {
+                    return Err(field(
+                        "fatigue.parameters_file",
+                        "give parameters or parameters_file, not both".into(),
+                    ));
+                }
+                let fp = path.parent().unwrap_or(Path::new(".")).join(name);
+                let text = crate::io::read_text(&fp)
+                    .map_err(|e| field("fatigue.parameters_file", e.to_string()))?;
+                input_files.push(fp.clone());
+                Some(
+                    ParameterSet::from_yaml_str(&text, &fp.display().to_string())
+                        .map_err(|e| field("fatigue.parameters_file", e))?,
+                )
+            }
+            None => None,
+        };
         let (fatigue, fatigue_choice, parameter_set) =
-            resolve_fatigue(&f.fatigue, &half_joints, &f.worker, &field)?;
+            resolve_fatigue(&f.fatigue, file_set, &half_joints, &f.worker, &field)?;
 
         let workstation = Workstation::new(f.workstation.obstacles)
             .map_err(|e| field("workstation.obstacles", e.to_string()))?;
@@ -651,6 +715,27 @@ impl Task {
                 format!("must be in [0, 1), got {}", f.replan.capacity_tolerance),
             ));
         }
+        let mut lifts = Vec::with_capacity(f.lifts.len());
+        for (i, l) in f.lifts.iter().enumerate() {
+            let find = |what: &str, name: &str| {
+                phases.iter().position(|p| p.name == name).ok_or_else(|| {
+                    field(
+                        &format!("lifts[{i}] ({}).{what}", l.name),
+                        format!(
+                            "'{name}' is not a phase of the task{}",
+                            crate::schema::did_you_mean(name, phases.iter().map(|p| p.name.as_str()))
+                        ),
+                    )
+                })
+            };
+            lifts.push(Lift {
+                name: l.name.clone(),
+                origin: find("origin", &l.origin)?,
+                destination: find("destination", &l.destination)?,
+                coupling: l.coupling,
+                control_at_destination: l.control_at_destination,
+            });
+        }
         let o = &f.objective;
         if !(o.discomfort_weight.is_finite() && (0.0..=100.0).contains(&o.discomfort_weight)) {
             return Err(field(
@@ -697,6 +782,7 @@ impl Task {
                 clearance_m: o.clearance_m,
                 balance_margin_m: o.balance_margin_m,
             },
+            lifts,
         })
     }
 }
@@ -867,6 +953,7 @@ fn check_rate(name: &str, v: Option<f64>, positive: bool, field: &FieldErr) -> R
 /// Fatigue parameters per half-joint from the task's `fatigue` section.
 fn resolve_fatigue(
     ff: &FatigueFile,
+    file_set: Option<ParameterSet>,
     half_joints: &[HalfJoint],
     worker: &Worker,
     field: &FieldErr,
@@ -876,7 +963,9 @@ fn resolve_fatigue(
         && ff.recovery.is_none()
         && (ff.k_per_min.is_some() || ff.recovery_per_min.is_some());
     let set_name = ff.parameters.clone().unwrap_or(sets.default_set.clone());
-    let set = if legacy {
+    let set = if let Some(fs) = file_set {
+        Some(fs)
+    } else if legacy {
         None
     } else {
         Some(sets.get(&set_name).cloned().ok_or_else(|| {

@@ -1,25 +1,24 @@
 //! RULA, the Rapid Upper Limb Assessment of McAtamney & Corlett (1993, Applied Ergonomics
-//! 24(2):91–99), scored from a posture of the default worker body, with every worksheet step
+//! 24(2):91–99), scored from a posture of the whole-body worker, with every worksheet step
 //! recorded (what was measured, which rule applied, the score).
 //!
 //! Tables A, B and C are those of the 1993 paper (several later worksheets print a variant of
-//! Table A for upper-arm scores 2–4; the paper's version is used). What a planned posture does
-//! not say is fixed by documented ASSUMPTIONS, listed in [`Rula::assumptions`]:
-//! * the body has no neck joint and no legs: neck score 1 (0–10° flexion, not twisted or bent),
-//!   legs score 1 (standing, weight on both feet);
+//! Table A for upper-arm scores 2–4; the paper's version is used). The angles come from the
+//! posture's geometry ([`BodyAngles`]): trunk against the vertical, neck against the trunk, arms
+//! against the trunk, the wrist joints, the knees and the feet's weight shares. What a posture
+//! does not say is fixed by documented ASSUMPTIONS, listed in [`Rula::assumptions`]:
 //! * the shoulder girdle is not modelled (never "raised") and the arm is never supported;
 //! * "neutral" means within [`NEUTRAL_TOLERANCE_DEG`] (5°), and the "+1 if twisted / bent /
 //!   abducted" adjustments apply beyond [`ADJUSTMENT_THRESHOLD_DEG`] (upper-arm abduction
 //!   beyond 20°); the wrist is "at or near the end of its twisting range" beyond 75 % of the
-//!   forearm joint's limit on that side; the hand works "out to the side" when it is more than
+//!   forearm joint's range on that side; the hand works "out to the side" when it is more than
 //!   10 cm lateral of the shoulder, "across the midline" when it is on the other side of the
-//!   trunk's mid-plane.
-//!
-//! Angles come from the posture's geometry in the trunk frame (upper arm, elbow, trunk) and from
-//! the wrist and forearm joints; see [`RulaPosture::from_worker`].
+//!   trunk's mid-plane; legs score 1 when both feet bear weight, 2 otherwise;
+//! * **sides**: RULA scores one arm; both are scored and the worse grand score is reported
+//!   (ties: the arm holding more load, else the right), as RULA's authors advise for
+//!   asymmetric work.
 
-use crate::body::{forward_kinematics, BodyModel, StaticsData};
-use nalgebra::Vector3;
+use super::angles::{ArmAngles, BodyAngles};
 use serde::Serialize;
 
 /// Within this many degrees of neutral counts as neutral (pose tolerance).
@@ -89,13 +88,6 @@ const TABLE_C: [[u8; 7]; 8] = [
     [5, 5, 6, 7, 7, 7, 7],
 ];
 
-/// Why RULA cannot be scored for a body.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum RulaError {
-    #[error("RULA needs the default worker body; '{0}' is not in this model")]
-    NotWorkerBody(String),
-}
-
 /// The angles and positions RULA looks at (degrees; flexion positive).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RulaPosture {
@@ -116,6 +108,12 @@ pub struct RulaPosture {
     pub trunk_flexion_deg: f64,
     pub trunk_twist_deg: f64,
     pub trunk_side_bend_deg: f64,
+    /// Head against the trunk, flexion positive.
+    pub neck_flexion_deg: f64,
+    pub neck_twist_deg: f64,
+    pub neck_side_bend_deg: f64,
+    /// Both feet bear weight.
+    pub legs_supported: bool,
 }
 
 /// How the posture is used: what the hand holds and how often / long the posture recurs.
@@ -145,7 +143,7 @@ pub struct WorksheetStep {
 /// A RULA assessment: the worksheet, the intermediate scores and the grand score.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Rula {
-    pub side: &'static str,
+    pub side: String,
     pub worksheet: Vec<WorksheetStep>,
     pub upper_arm: i32,
     pub lower_arm: i32,
@@ -167,95 +165,32 @@ pub struct Rula {
 }
 
 const ASSUMPTIONS: [&str; 4] = [
-    "no neck joint in the model: neck score 1 (0-10 deg flexion, not twisted or side-bent)",
-    "no legs in the model: legs score 1 (standing, weight evenly on both feet)",
+    "legs: both feet bear weight (each at least 10 % of it) scores 1, else 2",
+    "sides: both arms are scored and the worse grand score is reported",
     "shoulder girdle not modelled (never raised); arm never supported",
     "thresholds: neutral within 5 deg; twist/side-bend/deviation beyond 10 deg, abduction beyond 20 deg, wrist twist beyond 75% of the joint limit, hand > 10 cm lateral of the shoulder = out to side",
 ];
 
 impl RulaPosture {
-    /// Measures the posture `q_rad` of the default worker (links `pelvis`, `trunk`,
-    /// `r_upper_arm`, `r_forearm`, `r_hand`, `hand_grip`; joints `r_forearm_pronation`,
-    /// `r_wrist_flexion`, `r_wrist_deviation`, `lumbar_axial_rotation`). Right arm.
-    pub fn from_worker(
-        model: &BodyModel,
-        data: &mut StaticsData,
-        q_rad: &[f64],
-    ) -> Result<Self, RulaError> {
-        let link = |name: &str| {
-            model
-                .frame_link(name)
-                .map_err(|_| RulaError::NotWorkerBody(name.to_string()))
-        };
-        let joint = |name: &str| {
-            model
-                .q_index(name)
-                .map_err(|_| RulaError::NotWorkerBody(name.to_string()))
-        };
-        let (pelvis, trunk, upper, fore, hand, grip) = (
-            link("pelvis")?,
-            link("trunk")?,
-            link("r_upper_arm")?,
-            link("r_forearm")?,
-            link("r_hand")?,
-            link("hand_grip")?,
-        );
-        let (pron, wflex, wdev, twist) = (
-            joint("r_forearm_pronation")?,
-            joint("r_wrist_flexion")?,
-            joint("r_wrist_deviation")?,
-            joint("lumbar_axial_rotation")?,
-        );
-        forward_kinematics(model, data, q_rad);
-        let origin = Vector3::zeros();
-        let (r_pelvis, _) = data.link_pose(model, pelvis);
-        let (r_trunk, p_trunk) = data.link_pose(model, trunk);
-        let shoulder = data.link_point(model, upper, &origin);
-        let elbow = data.link_point(model, fore, &origin);
-        let wrist = data.link_point(model, hand, &origin);
-        let grip_w = data.link_point(model, grip, &origin);
-        // Upper arm and forearm directions in the trunk frame (x forward, y left, z up).
-        let u = (r_trunk.transpose() * (elbow - shoulder)).normalize();
-        let v = (r_trunk.transpose() * (wrist - elbow)).normalize();
-        let deg = f64::to_degrees;
-        let elevation = deg((-u.z).clamp(-1.0, 1.0).acos());
-        let outward = -u.y; // right arm: outward is −y
-        let backward = u.x < 0.0 && -u.x >= outward.abs();
-        let upper_arm_flexion_deg = if backward { -elevation } else { elevation };
-        let upper_arm_abduction_deg = deg(outward.clamp(-1.0, 1.0).asin());
-        let elbow_flexion_deg = deg(u.dot(&v).clamp(-1.0, 1.0).acos());
-        let hand_t = r_trunk.transpose() * (grip_w - p_trunk);
-        let shoulder_t = r_trunk.transpose() * (shoulder - p_trunk);
-        let hand_across_midline = hand_t.y > 0.0;
-        let hand_out_to_side = hand_t.y < shoulder_t.y - OUT_TO_SIDE_M;
-        let pj = model.q_joint(pron);
-        let qp = q_rad[pron];
-        let wrist_twist_fraction = if qp >= 0.0 {
-            if pj.upper_rad > 0.0 {
-                qp / pj.upper_rad
-            } else {
-                0.0
-            }
-        } else if pj.lower_rad < 0.0 {
-            qp / pj.lower_rad
-        } else {
-            0.0
-        };
-        // Trunk axis in the pelvis frame.
-        let t = r_pelvis.transpose() * r_trunk * Vector3::z();
-        Ok(RulaPosture {
-            upper_arm_flexion_deg,
-            upper_arm_abduction_deg,
-            elbow_flexion_deg,
-            hand_across_midline,
-            hand_out_to_side,
-            wrist_flexion_deg: deg(q_rad[wflex]),
-            wrist_deviation_deg: deg(q_rad[wdev]),
-            wrist_twist_fraction,
-            trunk_flexion_deg: deg(t.x.atan2(t.z)),
-            trunk_twist_deg: deg(q_rad[twist]),
-            trunk_side_bend_deg: deg(t.y.clamp(-1.0, 1.0).asin()),
-        })
+    /// RULA's view of one arm (and of the trunk, neck and legs) of measured body angles.
+    pub fn from_angles(b: &BodyAngles, arm: &ArmAngles) -> Self {
+        RulaPosture {
+            upper_arm_flexion_deg: arm.upper_arm_flexion_deg,
+            upper_arm_abduction_deg: arm.upper_arm_abduction_deg,
+            elbow_flexion_deg: arm.elbow_flexion_deg,
+            hand_across_midline: arm.hand_across_midline,
+            hand_out_to_side: arm.hand_out_to_side,
+            wrist_flexion_deg: arm.wrist_flexion_deg,
+            wrist_deviation_deg: arm.wrist_deviation_deg,
+            wrist_twist_fraction: arm.wrist_twist_fraction,
+            trunk_flexion_deg: b.trunk_flexion_deg,
+            trunk_twist_deg: b.trunk_twist_deg,
+            trunk_side_bend_deg: b.trunk_side_bend_deg,
+            neck_flexion_deg: b.neck_flexion_deg,
+            neck_twist_deg: b.neck_twist_deg,
+            neck_side_bend_deg: b.neck_side_bend_deg,
+            legs_supported: b.both_feet_bear_weight,
+        }
     }
 }
 
@@ -291,14 +226,15 @@ pub fn action_level(grand: i32) -> (i32, &'static str) {
 /// Scores one posture: the RULA worksheet, steps 1–15.
 ///
 /// ```
-/// use posture_opt::rula::{score, RulaActivity, RulaPosture};
+/// use posture_opt::assess::rula::{score, RulaActivity, RulaPosture};
 /// // Upper arm 50° (3), elbow 80° (1), wrist 10° (2), twist mid-range (1): Table A gives 4;
 /// // 4 kg intermittent adds 1: C = 5. Trunk 15° (2): Table B gives 2, D = 3. Table C: 4.
 /// let p = RulaPosture {
 ///     upper_arm_flexion_deg: 50.0, upper_arm_abduction_deg: 0.0, elbow_flexion_deg: 80.0,
 ///     hand_across_midline: false, hand_out_to_side: false, wrist_flexion_deg: 10.0,
 ///     wrist_deviation_deg: 0.0, wrist_twist_fraction: 0.0, trunk_flexion_deg: 15.0,
-///     trunk_twist_deg: 0.0, trunk_side_bend_deg: 0.0,
+///     trunk_twist_deg: 0.0, trunk_side_bend_deg: 0.0, neck_flexion_deg: 5.0,
+///     neck_twist_deg: 0.0, neck_side_bend_deg: 0.0, legs_supported: true,
 /// };
 /// let r = score(&p, &RulaActivity { load_kg: 4.0, held_s: 3.0, repeats_per_min: 3.0 });
 /// assert_eq!((r.posture_a, r.score_c, r.score_d, r.grand_score, r.action_level), (4, 5, 3, 4, 2));
@@ -469,14 +405,34 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
     ));
 
     // Steps 9-11: neck, trunk, legs.
-    let neck = 1;
+    let nf = p.neck_flexion_deg;
+    let (nk0, rule) = if nf < -tol {
+        (4, "in extension")
+    } else if nf <= 10.0 {
+        (1, "0 to 10 deg flexion")
+    } else if nf <= 20.0 {
+        (2, "10 to 20 deg flexion")
+    } else {
+        (3, "more than 20 deg flexion")
+    };
+    ws.push(step("9", "neck position", Some(nf), rule, nk0));
+    let n_twist = p.neck_twist_deg.abs() > ADJUSTMENT_THRESHOLD_DEG;
+    let n_side = p.neck_side_bend_deg.abs() > ADJUSTMENT_THRESHOLD_DEG;
     ws.push(step(
-        "9",
-        "neck position",
-        None,
-        "ASSUMPTION: not modelled; 0 to 10 deg flexion, not twisted or side-bent",
-        neck,
+        "9a",
+        "neck adjustment: twist",
+        Some(p.neck_twist_deg),
+        if n_twist { "twisted: +1" } else { "not twisted: +0" },
+        i32::from(n_twist),
     ));
+    ws.push(step(
+        "9b",
+        "neck adjustment: side bend",
+        Some(p.neck_side_bend_deg),
+        if n_side { "side-bending: +1" } else { "not side-bending: +0" },
+        i32::from(n_side),
+    ));
+    let neck = (nk0 + i32::from(n_twist) + i32::from(n_side)).clamp(1, 6);
     let tf = p.trunk_flexion_deg;
     let (tr0, rule) = if tf.abs() <= tol {
         (1, "upright")
@@ -513,12 +469,16 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
         i32::from(side),
     ));
     let trunk = (tr0 + i32::from(twisted) + i32::from(side)).clamp(1, 6);
-    let legs = 1;
+    let legs = if p.legs_supported { 1 } else { 2 };
     ws.push(step(
         "11",
         "legs",
         None,
-        "ASSUMPTION: not modelled; standing, weight evenly on both feet",
+        if p.legs_supported {
+            "legs and feet supported, weight on both feet: 1"
+        } else {
+            "weight on one foot (the other carries less than 10 %): 2"
+        },
         legs,
     ));
     let posture_b = TABLE_B[(neck - 1) as usize][((trunk - 1) * 2 + legs - 1) as usize] as i32;
@@ -562,7 +522,7 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
         grand_score,
     ));
     Rula {
-        side: "right",
+        side: "right".into(),
         worksheet: ws,
         upper_arm,
         lower_arm,
@@ -579,5 +539,19 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
         action_level,
         action,
         assumptions: ASSUMPTIONS.to_vec(),
+    }
+}
+
+/// RULA of both arms of a measured posture; the worse grand score is kept (ties: the arm with
+/// more load, `right_heavier` — else the right). Returns (the reported one, the other arm's).
+pub fn score_body(b: &BodyAngles, a: &RulaActivity, right_heavier: bool) -> (Rula, Rula) {
+    let mut r = score(&RulaPosture::from_angles(b, &b.right), a);
+    let mut l = score(&RulaPosture::from_angles(b, &b.left), a);
+    r.side = "right".into();
+    l.side = "left".into();
+    if l.grand_score > r.grand_score || (l.grand_score == r.grand_score && !right_heavier) {
+        (l, r)
+    } else {
+        (r, l)
     }
 }

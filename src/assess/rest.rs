@@ -2,7 +2,7 @@
 //!
 //! Two answers, side by side:
 //!
-//! * **Model** (Ma et al. 2009 with the recovery term `dc/dt = −k f c + R (1 − c)`): the plan's
+//! * **Model** (Ma et al. 2009 with the recovery term `dc/dt = −k f c + R(f) (1 − c)`): the plan's
 //!   phase loads are replayed cycle by cycle, exactly (closed forms per held step), with a rest
 //!   of `r` seconds (rest posture, no load) at the end of each cycle. The smallest `r` (to 0.1 s)
 //!   for which every group's capacity stays at or above the floor — and above its load, so
@@ -10,7 +10,8 @@
 //!   within a held step, so checking step ends is exact. The postures are the plan's; more or
 //!   less rest would let the adaptive planner choose slightly different ones (not re-planned).
 //!   With `R = 0` (the paper's model) rest restores nothing and only "no rest needed" or
-//!   "rest cannot help" are possible answers.
+//!   "rest cannot help" are possible answers. The bisection stops at 0.1 s or 10⁻³ of the
+//!   cycle's work time, whichever is coarser (at most 40 replays).
 //! * **Rohmert (1973)**, the classic rest-allowance rule for static work: a hold of `t` minutes
 //!   at relative load `f > 0.15` needs `RA = 18 · (t/T)^1.4 · (f − 0.15)^0.5` of `t` as rest,
 //!   where `T(f) = −1.5 + 2.1/f − 0.6/f² + 0.1/f³` min is Rohmert's endurance time (Table 2's
@@ -22,11 +23,8 @@
 //! The floor is a planning choice (default [`DEFAULT_CAPACITY_FLOOR`], an ASSUMPTION: keep 70 %
 //! of MVC available).
 
-use crate::body::holding_torques;
-use crate::fatigue::MaState;
-use crate::plan::Plan;
-use crate::task::Task;
-use nalgebra::Vector3;
+use crate::fatigue::{MaParams, MaState};
+use crate::plan::{Plan, Task};
 use serde::Serialize;
 
 /// Default capacity floor (fraction of MVC) — an ASSUMPTION, not from the literature.
@@ -82,7 +80,7 @@ pub fn rohmert_endurance_min(f: f64) -> f64 {
 /// (0 at or below 15 % MVC; `None` above 100 % MVC).
 ///
 /// ```
-/// use posture_opt::rest::{rohmert_allowance, rohmert_endurance_min};
+/// use posture_opt::assess::rest::{rohmert_allowance, rohmert_endurance_min};
 /// // T(0.5) = -1.5 + 4.2 - 2.4 + 0.8 = 1.1 min; holding that long needs 18·√0.35 ≈ 10.65 × t
 /// assert!((rohmert_endurance_min(0.5) - 1.1).abs() < 1e-12);
 /// assert!((rohmert_allowance(0.5, 66.0).unwrap() - 10.649).abs() < 1e-3);
@@ -98,37 +96,27 @@ pub fn rohmert_allowance(f: f64, hold_s: f64) -> Option<f64> {
     Some(18.0 * (t_min / rohmert_endurance_min(f)).powf(1.4) * (f - 0.15).sqrt())
 }
 
-/// Loads of each half-joint in the rest posture (all joints at 0, no hand load).
-pub fn rest_loads(task: &Task) -> Vec<f64> {
-    let mut data = crate::body::StaticsData::new(&task.model);
-    let q = vec![0.0; task.model.nq()];
-    holding_torques(
-        &task.model,
-        &mut data,
-        &q,
-        task.hand_link,
-        &Vector3::zeros(),
-        &task.gravity_m_s2,
-    );
-    task.half_joints
+/// Loads of each half-joint in the plan's rest posture.
+pub fn rest_loads(plan: &Plan) -> Vec<f64> {
+    plan.postures
         .iter()
-        .map(|h| h.load(data.tau_nm[h.q_index], q[h.q_index]))
-        .collect()
+        .find(|p| p.phase == "rest")
+        .map(|p| p.load.clone())
+        .unwrap_or_else(|| vec![0.0; plan.half_joint_ids.len()])
 }
 
-/// The per-cycle work loads of a plan: for each cycle, the loads of each phase (half-joint
-/// order of the task). Cycles the plan did not complete repeat the last complete one.
-fn cycle_loads(task: &Task, plan: &Plan) -> Option<Vec<Vec<Vec<f64>>>> {
+/// The per-cycle work of a plan: for each cycle, the posture (index into `plan.postures`) of each
+/// phase. Cycles the plan did not complete repeat the last complete one.
+fn cycle_postures(task: &Task, plan: &Plan) -> Option<Vec<Vec<usize>>> {
     let done = plan.summary.cycles_done as usize;
-    let mut cycles: Vec<Vec<Vec<f64>>> = vec![Vec::with_capacity(task.phases.len()); done];
-    for s in plan.steps.iter().filter(|s| s.target_position_m.is_some()) {
-        if let Some(c) = cycles.get_mut(s.cycle as usize) {
-            c.push(
-                task.half_joints
-                    .iter()
-                    .map(|h| s.load.get(&h.id).copied().unwrap_or(0.0))
-                    .collect(),
-            );
+    let mut cycles: Vec<Vec<usize>> = vec![Vec::with_capacity(task.phases.len()); done];
+    let st = &plan.steps;
+    for i in 0..st.t_s.len() {
+        if st.phase[i] == "rest" && plan.postures[st.posture[i]].phase == "rest" {
+            continue;
+        }
+        if let Some(c) = cycles.get_mut(st.cycle[i] as usize) {
+            c.push(st.posture[i]);
         }
     }
     let last = cycles.last()?.clone();
@@ -138,9 +126,12 @@ fn cycle_loads(task: &Task, plan: &Plan) -> Option<Vec<Vec<Vec<f64>>>> {
 
 /// Replays the task with `rest_s` per cycle: (smallest margin above max(floor, load), lowest
 /// capacity, its half-joint).
+#[allow(clippy::too_many_arguments)]
 fn replay(
     task: &Task,
-    loads: &[Vec<Vec<f64>>],
+    params: &[MaParams],
+    plan: &Plan,
+    cycles: &[Vec<usize>],
     f_rest: &[f64],
     rest_s: f64,
     floor: f64,
@@ -157,16 +148,17 @@ fn replay(
             }
         }
     };
-    for cycle in loads {
-        for (p, f) in cycle.iter().enumerate() {
+    for cycle in cycles {
+        for (p, &pi) in cycle.iter().enumerate() {
+            let f = &plan.postures[pi].load;
             for (h, s) in state.iter_mut().enumerate() {
-                task.fatigue[h].hold(s, f[h], task.phases[p].duration_s);
+                params[h].hold(s, f[h], task.phases[p].duration_s);
             }
             check(state, f);
         }
         if rest_s > 0.0 {
             for (h, s) in state.iter_mut().enumerate() {
-                task.fatigue[h].hold(s, f_rest[h], rest_s);
+                params[h].hold(s, f_rest[h], rest_s);
             }
             check(state, f_rest);
         }
@@ -176,25 +168,32 @@ fn replay(
 
 /// Rest advice for `plan` (a plan of `task`) with capacity floor `floor` in (0, 1).
 pub fn rest_advice(task: &Task, plan: &Plan, floor: f64) -> RestAdvice {
+    rest_advice_with(task, plan, floor, &task.fatigue)
+}
+
+/// [`rest_advice`] with other fatigue parameters (one per half-joint), for the uncertainty
+/// analysis: the plan's postures, another muscle.
+pub fn rest_advice_with(task: &Task, plan: &Plan, floor: f64, params: &[MaParams]) -> RestAdvice {
     let work_s: f64 = task.phases.iter().map(|p| p.duration_s).sum();
     let ids = |h: usize| task.half_joints[h].id.clone();
     let rohmert = rohmert_rest(task, plan);
-    let model = match cycle_loads(task, plan) {
+    let model = match cycle_postures(task, plan) {
         None => ModelRest {
-            min_capacity_current: plan.summary.min_capacity,
-            limiting_half_joint: plan.summary.min_capacity_half_joint.clone(),
+            min_capacity_current: plan.summary.lowest_capacity,
+            limiting_half_joint: plan.summary.lowest_capacity_half_joint.clone(),
             rest_s_per_cycle: None,
             min_capacity_at_recommended: None,
             note: "a muscle group is exhausted within the first cycle: rest between cycles cannot help; lower the load or change the layout".into(),
         },
-        Some(loads) => {
-            let f_rest = rest_loads(task);
+        Some(cycles) => {
+            let f_rest = rest_loads(plan);
             let mut state = vec![MaState::FRESH; task.half_joints.len()];
-            let (_, c_now, h_now) = replay(task, &loads, &f_rest, task.rest_s, floor, &mut state);
-            let feasible =
-                |r: f64, st: &mut [MaState]| replay(task, &loads, &f_rest, r, floor, st).0 >= 0.0;
+            let (_, c_now, h_now) = replay(task, params, plan, &cycles, &f_rest, task.rest_s, floor, &mut state);
+            let feasible = |r: f64, st: &mut [MaState]| {
+                replay(task, params, plan, &cycles, &f_rest, r, floor, st).0 >= 0.0
+            };
             let r_max = 10.0 * work_s;
-            let any_recovery = task.fatigue.iter().any(|p| p.r_at(0.0) > 0.0);
+            let any_recovery = params.iter().any(|p| p.r_at(0.0) > 0.0);
             let (rest, note) = if feasible(0.0, &mut state) {
                 (Some(0.0), "no rest needed to stay above the floor".to_string())
             } else if !feasible(r_max, &mut state) {
@@ -208,7 +207,10 @@ pub fn rest_advice(task: &Task, plan: &Plan, floor: f64) -> RestAdvice {
                 (None, why)
             } else {
                 let (mut lo, mut hi) = (0.0, r_max);
-                while hi - lo > 0.05 {
+                let resolution = (1e-3 * work_s).max(0.05);
+                let mut replays = 0;
+                while hi - lo > resolution && replays < 40 {
+                    replays += 1;
                     let mid = 0.5 * (lo + hi);
                     if feasible(mid, &mut state) {
                         hi = mid;
@@ -222,7 +224,8 @@ pub fn rest_advice(task: &Task, plan: &Plan, floor: f64) -> RestAdvice {
                     "smallest rest per cycle (0.1 s steps) keeping every capacity at or above the floor, with the plan's postures".to_string(),
                 )
             };
-            let c_rec = rest.map(|r| replay(task, &loads, &f_rest, r, floor, &mut state).1);
+            let c_rec =
+                rest.map(|r| replay(task, params, plan, &cycles, &f_rest, r, floor, &mut state).1);
             ModelRest {
                 min_capacity_current: c_now,
                 limiting_half_joint: ids(h_now),
@@ -247,18 +250,22 @@ fn rohmert_rest(task: &Task, plan: &Plan) -> RohmertRest {
     let mut over = vec![false; nh];
     let mut per_cycle = vec![0.0_f64; nh];
     let mut cycle = u32::MAX;
-    for s in plan.steps.iter().filter(|s| s.target_position_m.is_some()) {
-        if s.cycle != cycle {
+    let st = &plan.steps;
+    for i in 0..st.t_s.len() {
+        let posture = &plan.postures[st.posture[i]];
+        if posture.phase == "rest" {
+            continue;
+        }
+        if st.cycle[i] != cycle {
             for h in 0..nh {
                 need[h] = need[h].max(per_cycle[h]);
             }
             per_cycle.fill(0.0);
-            cycle = s.cycle;
+            cycle = st.cycle[i];
         }
-        for (h, hj) in task.half_joints.iter().enumerate() {
-            let f = s.load.get(&hj.id).copied().unwrap_or(0.0);
-            match rohmert_allowance(f, s.duration_s) {
-                Some(ra) => per_cycle[h] += ra * s.duration_s,
+        for (h, &f) in posture.load.iter().enumerate() {
+            match rohmert_allowance(f, st.duration_s[i]) {
+                Some(ra) => per_cycle[h] += ra * st.duration_s[i],
                 None => over[h] = true,
             }
         }

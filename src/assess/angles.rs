@@ -1,0 +1,175 @@
+//! The angles observational methods (RULA, REBA) look at, measured on a posture of the
+//! whole-body worker, in degrees.
+//!
+//! * **Trunk**: the trunk's long axis against the vertical, in the body's sagittal and frontal
+//!   planes (the pelvis's heading, projected on the floor, sets "forward"): so a stoop that tilts
+//!   the pelvis counts as trunk flexion, as an observer would see it. Twist: the trunk's heading
+//!   against the pelvis's.
+//! * **Neck**: the head's long axis against the trunk's, in the trunk's planes; twist: the neck's
+//!   axial rotation.
+//! * **Upper arm**: the shoulder-to-elbow direction in the trunk frame: flexion is its elevation
+//!   from hanging (negative when the arm points back), abduction its angle out of the trunk's
+//!   sagittal plane (outward positive).
+//! * **Elbow**: the included-angle flexion between upper arm and forearm (0 = straight).
+//! * **Wrist**: the wrist joints (flexion, deviation) and the forearm's pronation as a fraction of
+//!   its range on that side.
+//! * **Legs**: knee flexion of each leg; whether both feet bear weight (each carries at least
+//!   [`UNILATERAL_SHARE`] of it).
+
+use crate::body::{forward_kinematics, BodyModel, StaticsData};
+use nalgebra::{Matrix3, Vector3};
+use serde::Serialize;
+
+/// A foot carrying less than this share of the weight does not bear weight (REBA's "unilateral
+/// weight bearing"; ASSUMPTION).
+pub const UNILATERAL_SHARE: f64 = 0.1;
+
+/// One arm's angles (degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ArmAngles {
+    pub upper_arm_flexion_deg: f64,
+    pub upper_arm_abduction_deg: f64,
+    pub elbow_flexion_deg: f64,
+    pub wrist_flexion_deg: f64,
+    pub wrist_deviation_deg: f64,
+    /// Forearm pronation as a fraction of the joint's range on that side (0 = mid-position).
+    pub wrist_twist_fraction: f64,
+    /// Forearm pronation (supination negative) from the mid-position, thumb forward.
+    pub forearm_pronation_deg: f64,
+    /// The hand works across the body's midline / more than 10 cm out to the side of the shoulder.
+    pub hand_across_midline: bool,
+    pub hand_out_to_side: bool,
+}
+
+/// The whole body's angles (degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BodyAngles {
+    pub trunk_flexion_deg: f64,
+    /// Toward the left positive.
+    pub trunk_side_bend_deg: f64,
+    /// Toward the left positive.
+    pub trunk_twist_deg: f64,
+    pub neck_flexion_deg: f64,
+    pub neck_side_bend_deg: f64,
+    pub neck_twist_deg: f64,
+    pub right: ArmAngles,
+    pub left: ArmAngles,
+    pub right_knee_flexion_deg: f64,
+    pub left_knee_flexion_deg: f64,
+    pub both_feet_bear_weight: bool,
+}
+
+/// Why angles cannot be measured on a body.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("the assessment needs the whole-body worker; '{0}' is not in this model")]
+pub struct NotWorker(pub String);
+
+/// The hand "out to the side": more than this lateral of the shoulder \[m\].
+pub const OUT_TO_SIDE_M: f64 = 0.10;
+
+impl BodyAngles {
+    /// Angles of posture `q_rad` of the generated worker; `left_foot_share` is the share of the
+    /// weight on the left foot (from the statics), `None` for a body without feet.
+    pub fn measure(
+        model: &BodyModel,
+        data: &mut StaticsData,
+        q_rad: &[f64],
+        left_foot_share: Option<f64>,
+    ) -> Result<Self, NotWorker> {
+        let link = |name: &str| model.frame_link(name).map_err(|_| NotWorker(name.to_string()));
+        let joint = |name: &str| model.q_index(name).map_err(|_| NotWorker(name.to_string()));
+        let (pelvis, trunk, head) = (link("pelvis")?, link("trunk")?, link("head")?);
+        forward_kinematics(model, data, q_rad);
+        let deg = f64::to_degrees;
+        let (r_pelvis, _) = data.link_pose(model, pelvis);
+        let (r_trunk, p_trunk) = data.link_pose(model, trunk);
+        let (r_head, _) = data.link_pose(model, head);
+        // The body's horizontal frame: forward = the pelvis's x on the floor.
+        let fwd = {
+            let x = r_pelvis * Vector3::x();
+            let h = Vector3::new(x.x, x.y, 0.0);
+            if h.norm() > 1e-9 {
+                h.normalize()
+            } else {
+                Vector3::x()
+            }
+        };
+        let left = Vector3::z().cross(&fwd);
+        let t_axis = r_trunk * Vector3::z();
+        let trunk_flexion_deg = deg(t_axis.dot(&fwd).atan2(t_axis.z));
+        let trunk_side_bend_deg = deg(t_axis.dot(&left).atan2(t_axis.z));
+        let heading = |r: &Matrix3<f64>| {
+            let x = r * Vector3::x();
+            x.y.atan2(x.x)
+        };
+        let wrap = |a: f64| (a + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
+        let trunk_twist_deg = deg(wrap(heading(&r_trunk) - heading(&r_pelvis)));
+        let h_axis = r_trunk.transpose() * (r_head * Vector3::z());
+        let neck_flexion_deg = deg(h_axis.x.atan2(h_axis.z));
+        let neck_side_bend_deg = deg(h_axis.y.atan2(h_axis.z));
+        let neck_twist_deg = deg(q_rad[joint("neck_axial_rotation")?]);
+        let arm = |side: &str, outward_sign: f64| -> Result<ArmAngles, NotWorker> {
+            let (upper, fore, hand, grip) = (
+                link(&format!("{side}upper_arm"))?,
+                link(&format!("{side}forearm"))?,
+                link(&format!("{side}hand"))?,
+                link(&format!("{side}hand_grip"))?,
+            );
+            let (pron, wflex, wdev) = (
+                joint(&format!("{side}forearm_pronation"))?,
+                joint(&format!("{side}wrist_flexion"))?,
+                joint(&format!("{side}wrist_deviation"))?,
+            );
+            let o = Vector3::zeros();
+            let shoulder = data.link_point(model, upper, &o);
+            let elbow = data.link_point(model, fore, &o);
+            let wrist = data.link_point(model, hand, &o);
+            let grip_w = data.link_point(model, grip, &o);
+            let u = (r_trunk.transpose() * (elbow - shoulder)).normalize();
+            let v = (r_trunk.transpose() * (wrist - elbow)).normalize();
+            let elevation = deg((-u.z).clamp(-1.0, 1.0).acos());
+            let outward = outward_sign * u.y;
+            let backward = u.x < 0.0 && -u.x >= outward.abs();
+            let hand_t = r_trunk.transpose() * (grip_w - p_trunk);
+            let shoulder_t = r_trunk.transpose() * (shoulder - p_trunk);
+            let pj = model.q_joint(pron);
+            let qp = q_rad[pron];
+            let twist = if qp >= 0.0 && pj.upper_rad > 0.0 {
+                qp / pj.upper_rad
+            } else if qp < 0.0 && pj.lower_rad < 0.0 {
+                qp / pj.lower_rad
+            } else {
+                0.0
+            };
+            Ok(ArmAngles {
+                upper_arm_flexion_deg: if backward { -elevation } else { elevation },
+                upper_arm_abduction_deg: deg(outward.clamp(-1.0, 1.0).asin()),
+                elbow_flexion_deg: deg(u.dot(&v).clamp(-1.0, 1.0).acos()),
+                wrist_flexion_deg: deg(q_rad[wflex]),
+                wrist_deviation_deg: deg(q_rad[wdev]),
+                wrist_twist_fraction: twist,
+                forearm_pronation_deg: deg(qp),
+                hand_across_midline: -outward_sign * hand_t.y > 0.0,
+                hand_out_to_side: outward_sign * (hand_t.y - shoulder_t.y) > OUT_TO_SIDE_M,
+            })
+        };
+        // the right arm's outward is −y, the left's +y
+        let right = arm("r_", -1.0)?;
+        let left_arm = arm("l_", 1.0)?;
+        let (rk, lk) = (joint("r_knee_flexion")?, joint("l_knee_flexion")?);
+        Ok(BodyAngles {
+            trunk_flexion_deg,
+            trunk_side_bend_deg,
+            trunk_twist_deg,
+            neck_flexion_deg,
+            neck_side_bend_deg,
+            neck_twist_deg,
+            right,
+            left: left_arm,
+            right_knee_flexion_deg: deg(q_rad[rk]),
+            left_knee_flexion_deg: deg(q_rad[lk]),
+            both_feet_bear_weight: left_foot_share
+                .is_none_or(|s| (UNILATERAL_SHARE..=1.0 - UNILATERAL_SHARE).contains(&s)),
+        })
+    }
+}

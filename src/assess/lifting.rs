@@ -1,0 +1,115 @@
+//! The task's lifts through the revised NIOSH lifting equation, measured on the planned postures.
+//!
+//! For each declared lift (origin and destination phases): H is the horizontal distance from the
+//! mid-point between the ankles to the point below the mid-point of the hands, V the hands'
+//! mid-point height above the floor, A the angle between the line from the ankles' mid-point to
+//! the point below the hands and the worker's forward direction (the feet's, +x turned by the
+//! stance's toe-out: the mid-sagittal line of the neutral posture), D the vertical travel.
+//! The frequency is one lift per cycle; the duration category follows from the task's length;
+//! the load is the heavier of the two phases' hand loads. Several lifts give a composite
+//! lifting index.
+
+use super::niosh::{
+    assess_lift, composite, CompositeResult, Coupling, EquationForm, Lift, LiftGeometry,
+    LiftResult, NioshError, WorkDuration,
+};
+use crate::plan::posture::PostureWork;
+use crate::plan::task::CouplingName;
+use crate::plan::{Plan, Task};
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// The task's NIOSH results.
+#[derive(Debug, Clone, Serialize)]
+pub struct Lifting {
+    pub lifts: Vec<LiftResult>,
+    /// The composite lifting index when the task has several lifts.
+    pub composite: Option<CompositeResult>,
+}
+
+fn geometry(task: &Task, plan: &Plan, pw: &mut PostureWork, p: usize) -> Option<LiftGeometry> {
+    let ph = &task.phases[p];
+    let q = &plan.summary.phases[p].q_rad;
+    pw.statics(task, q, &ph.hand_force_n);
+    let hands: Vec<Vector3<f64>> = (0..2)
+        .filter(|&h| ph.targets_m[h].is_some())
+        .filter_map(|h| pw.hand_position(task, h))
+        .collect();
+    if hands.is_empty() {
+        return None;
+    }
+    let mid = hands.iter().fold(Vector3::zeros(), |a, b| a + b) / hands.len() as f64;
+    // the feet point forward (+x; a toe-out turns them symmetrically), so the mid-sagittal line
+    // of the neutral posture is the x axis through the ankles' mid-point
+    let ankles = match &task.stance {
+        Some(st) => {
+            (st.world_from_foot[0].translation.vector + st.world_from_foot[1].translation.vector)
+                / 2.0
+        }
+        None => Vector3::zeros(),
+    };
+    let d = Vector3::new(mid.x - ankles.x, mid.y - ankles.y, 0.0);
+    let h = d.norm();
+    let a = if h > 1e-9 { d.y.atan2(d.x).to_degrees() } else { 0.0 };
+    Some(LiftGeometry {
+        h_m: h,
+        v_m: mid.z,
+        asymmetry_deg: a.abs(),
+    })
+}
+
+/// The NIOSH assessment of the task's lifts (`None` without lifts).
+pub fn assess_lifts(task: &Task, plan: &Plan) -> Option<Result<Lifting, NioshError>> {
+    if task.lifts.is_empty() {
+        return None;
+    }
+    let mut pw = PostureWork::new(task);
+    let g = task.gravity_m_s2.norm().max(1e-9);
+    let hours = task.duration_s() / 3600.0;
+    let duration = match WorkDuration::from_hours(hours.clamp(1e-6, 8.0)) {
+        Ok(d) => d,
+        Err(e) => return Some(Err(e)),
+    };
+    let mut lifts = Vec::with_capacity(task.lifts.len());
+    for l in &task.lifts {
+        let (Some(origin), Some(destination)) = (
+            geometry(task, plan, &mut pw, l.origin),
+            geometry(task, plan, &mut pw, l.destination),
+        ) else {
+            continue;
+        };
+        let load = task.phases[l.origin]
+            .total_force_n()
+            .norm()
+            .max(task.phases[l.destination].total_force_n().norm())
+            / g;
+        lifts.push(Lift {
+            name: l.name.clone(),
+            load_kg: load,
+            max_load_kg: None,
+            origin,
+            destination,
+            freq_per_min: 60.0 / task.cycle_s(),
+            duration,
+            coupling: match l.coupling {
+                CouplingName::Good => Coupling::Good,
+                CouplingName::Fair => Coupling::Fair,
+                CouplingName::Poor => Coupling::Poor,
+            },
+            control_at_destination: l.control_at_destination,
+            form: EquationForm::Metric,
+        });
+    }
+    let results: Result<Vec<LiftResult>, NioshError> = lifts.iter().map(assess_lift).collect();
+    Some(results.and_then(|r| {
+        let comp = if lifts.len() > 1 {
+            Some(composite(&lifts)?)
+        } else {
+            None
+        };
+        Ok(Lifting {
+            lifts: r,
+            composite: comp,
+        })
+    }))
+}

@@ -1,0 +1,195 @@
+//! What the fatigue index means for a task, in words and numbers an ergonomist can use: how long
+//! the worker could keep up the pace before a muscle group gives out, how much of its endurance
+//! each hold uses, and how much capacity is left at the end of the shift.
+//!
+//! * **Time to exhaustion at this pace**: the task's cycle kept up from the start with the last
+//!   plan's postures, every step held exactly, until a group's capacity falls to its load, the
+//!   capacities settle into their periodic steady state ("never"), or a week has passed.
+//! * **Endurance used**: for each phase and group, the hold's duration against the maximum
+//!   endurance time of that load from a rested muscle (MET); the largest share is reported.
+//! * **Capacity left**: the lowest capacity at the end of the task (fraction of strength).
+
+use crate::fatigue::{MaParams, MaState};
+use crate::plan::{Plan, Task};
+use serde::Serialize;
+
+/// The meaning of a plan's fatigue.
+#[derive(Debug, Clone, Serialize)]
+pub struct Meaning {
+    /// Minutes from the start until a muscle group gives out if the cycle is kept up with the
+    /// plan's final postures; `None`: never.
+    pub minutes_to_exhaustion: Option<f64>,
+    /// The group that gives out first, when one does.
+    pub first_to_give_out: Option<String>,
+    /// The largest share of a rested muscle's endurance one hold uses (0..1+), and where.
+    pub endurance_share: f64,
+    pub endurance_group: String,
+    pub endurance_phase: String,
+    /// Lowest capacity at the end of the task, and whose.
+    pub capacity_left: f64,
+    pub capacity_left_group: String,
+    /// A verdict in plain words.
+    pub words: String,
+}
+
+/// The meaning of `plan`'s fatigue.
+pub fn meaning(task: &Task, plan: &Plan) -> Meaning {
+    meaning_with(task, plan, &task.fatigue)
+}
+
+/// [`meaning`] with other fatigue parameters (one per half-joint): the plan's postures, another
+/// muscle (the uncertainty analysis).
+pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
+    let nh = task.half_joints.len();
+    let n_ph = task.phases.len();
+    // the last plan's posture per phase: the last steps' postures
+    let mut loads: Vec<Vec<f64>> = vec![vec![0.0; nh]; n_ph + 1];
+    let st = &plan.steps;
+    for i in 0..st.t_s.len() {
+        let pr = &plan.postures[st.posture[i]];
+        let idx = if pr.phase == "rest" {
+            n_ph
+        } else {
+            task.phases.iter().position(|p| p.name == st.phase[i]).unwrap_or(0)
+        };
+        loads[idx] = pr.load.clone();
+    }
+    let durations: Vec<f64> = task
+        .phases
+        .iter()
+        .map(|p| p.duration_s)
+        .chain(std::iter::once(task.rest_s))
+        .collect();
+    // Keep the pace: cycle by cycle from the start, at most a week of cycles, stopping at the
+    // periodic steady state.
+    let mut state = vec![MaState::FRESH; nh];
+    let mut t = 0.0;
+    let mut exhausted: Option<(f64, usize)> = None;
+    let max_cycles = ((7.0 * 86400.0) / task.cycle_s()).ceil().min(2e6) as usize;
+    let mut last = vec![1.0; nh];
+    'outer: for _ in 0..max_cycles {
+        for (s, d) in durations.iter().enumerate() {
+            if *d <= 0.0 {
+                continue;
+            }
+            for h in 0..nh {
+                if let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, loads[s][h]) {
+                    if te < *d {
+                        exhausted = Some((t + te, h));
+                        break 'outer;
+                    }
+                }
+            }
+            for h in 0..nh {
+                params[h].hold(&mut state[h], loads[s][h], *d);
+            }
+            t += d;
+        }
+        let settled = state
+            .iter()
+            .zip(&last)
+            .all(|(s, c)| (s.capacity - c).abs() < 1e-12);
+        if settled {
+            break;
+        }
+        last = state.iter().map(|s| s.capacity).collect();
+    }
+    let (mut share, mut sh_h, mut sh_p) = (0.0, 0, 0);
+    for (p, ph) in task.phases.iter().enumerate() {
+        for h in 0..nh {
+            if let Some(met) = params[h].met_min(loads[p][h]) {
+                let s = ph.duration_s / (met * 60.0).max(1e-9);
+                if s > share {
+                    (share, sh_h, sh_p) = (s, h, p);
+                }
+            }
+        }
+    }
+    let replayed = replay_plan(plan, params);
+    let (c_left, c_h) = replayed
+        .final_capacity
+        .iter()
+        .enumerate()
+        .map(|(h, c)| (*c, h))
+        .fold((1.0, 0), |a, b| if b.0 < a.0 { b } else { a });
+    let group = |h: usize| task.half_joints[h].group.clone();
+    let words = match exhausted {
+        Some((te, h)) if te <= task.duration_s() => format!(
+            "at this pace the {} give out after {:.0} min, before the task's {:.0} min are over",
+            group(h),
+            te / 60.0,
+            task.duration_s() / 60.0
+        ),
+        Some((te, h)) => format!(
+            "the task can be done; kept up, the {} would give out after {:.1} h; at the end {:.0} % of the {}'s strength is left",
+            group(h),
+            te / 3600.0,
+            100.0 * c_left,
+            group(c_h)
+        ),
+        None => format!(
+            "this pace can be kept up indefinitely: every muscle group settles above its loads; at the end {:.0} % of the {}'s strength is left",
+            100.0 * c_left,
+            group(c_h)
+        ),
+    };
+    Meaning {
+        minutes_to_exhaustion: exhausted.map(|(te, _)| te / 60.0),
+        first_to_give_out: exhausted.map(|(_, h)| group(h)),
+        endurance_share: share,
+        endurance_group: group(sh_h),
+        endurance_phase: task.phases[sh_p].name.clone(),
+        capacity_left: c_left,
+        capacity_left_group: group(c_h),
+        words,
+    }
+}
+
+/// A plan's steps held again with `params` (one per half-joint): what the fatigue state does.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Replay {
+    pub final_capacity: Vec<f64>,
+    /// Lowest capacity at any time, its half-joint index and time \[s\].
+    pub lowest_capacity: f64,
+    pub lowest_half_joint: usize,
+    pub lowest_t_s: f64,
+    /// First time a group's capacity falls to its load, and which.
+    pub exhaustion: Option<(f64, usize)>,
+}
+
+/// Holds every step of `plan` exactly with `params`: capacity at the end, lowest capacity at any
+/// time (the capacity only falls within a step held at constant load when the load exceeds the
+/// recovery's balance, so the lowest is at a step's end or at exhaustion), first exhaustion.
+pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
+    let nh = params.len();
+    let mut state = vec![MaState::FRESH; nh];
+    let mut r = Replay {
+        final_capacity: vec![1.0; nh],
+        lowest_capacity: 1.0,
+        lowest_half_joint: 0,
+        lowest_t_s: 0.0,
+        exhaustion: None,
+    };
+    let st = &plan.steps;
+    for i in 0..st.t_s.len() {
+        let f = &plan.postures[st.posture[i]].load;
+        let d = st.duration_s[i];
+        for h in 0..nh {
+            if r.exhaustion.is_none() {
+                if let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, f[h]) {
+                    if te < d {
+                        r.exhaustion = Some((st.t_s[i] + te, h));
+                    }
+                }
+            }
+            params[h].hold(&mut state[h], f[h], d);
+            if state[h].capacity < r.lowest_capacity {
+                r.lowest_capacity = state[h].capacity;
+                r.lowest_half_joint = h;
+                r.lowest_t_s = st.t_s[i] + d;
+            }
+        }
+    }
+    r.final_capacity = state.iter().map(|s| s.capacity).collect();
+    r
+}

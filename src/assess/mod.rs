@@ -1,0 +1,75 @@
+//! What ergonomists report beside fatigue, for a planned posture or a whole plan.
+//!
+//! * [`angles`]: the body angles observational methods look at;
+//! * [`rula`], [`reba`]: RULA (McAtamney & Corlett 1993) and REBA (Hignett & McAtamney 2000) with
+//!   their worksheets;
+//! * [`niosh`]: the revised NIOSH lifting equation (Waters et al. 1993, Applications Manual 1994);
+//! * [`low_back`]: L5/S1 compression and shear (single equivalent muscle, Chaffin et al.);
+//! * [`rest`]: work and rest (the fatigue model's recovery against Rohmert's rule);
+//! * [`lifting`]: the task's declared lifts through NIOSH; [`phase`]: each phase's posture in
+//!   angles and words, RULA, REBA, low back and % capable; [`meaning`]: what U means (time to
+//!   exhaustion at this pace, endurance used, capacity left); [`uncertainty`]: how those move
+//!   across the fatigue parameters' ranges.
+
+pub mod angles;
+pub mod low_back;
+pub mod niosh;
+pub mod reba;
+pub mod rest;
+pub mod rula;
+pub mod lifting;
+pub mod meaning;
+pub mod phase;
+pub mod uncertainty;
+
+use crate::plan::{Plan, Task};
+use serde::Serialize;
+
+/// Everything assessed about a plan.
+#[derive(Debug, Clone, Serialize)]
+pub struct Assessment {
+    pub phases: Vec<phase::PhaseAssessment>,
+    /// The lowest share of men and of women strong enough for every load of the task.
+    pub capable_men: f64,
+    pub capable_women: f64,
+    /// Highest RULA and REBA over the phases.
+    pub rula_max: Option<i32>,
+    pub reba_max: Option<u8>,
+    /// Highest L5/S1 compression \[N\] and its phase.
+    pub back_compression_max_n: Option<f64>,
+    pub back_compression_phase: Option<String>,
+    pub lifting: Option<Result<lifting::Lifting, String>>,
+    pub meaning: meaning::Meaning,
+    pub rest: rest::RestAdvice,
+    /// The key results across the fatigue parameters' documented ranges.
+    pub uncertainty: Option<uncertainty::Sensitivity>,
+}
+
+/// Assesses a plan of `task` (capacity floor `floor` for the work/rest advice).
+pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
+    let phases = phase::assess_phases(task, plan);
+    let capable_men = phases.iter().map(|p| p.capable_men).fold(1.0, f64::min);
+    let capable_women = phases.iter().map(|p| p.capable_women).fold(1.0, f64::min);
+    let rula_max = phases.iter().filter_map(|p| p.rula.as_ref().map(|r| r.grand_score)).max();
+    let reba_max = phases.iter().filter_map(|p| p.reba.as_ref().map(|r| r.reba_score)).max();
+    let back = phases
+        .iter()
+        .filter_map(|p| p.low_back.as_ref().map(|b| (b.compression_n, p.phase.clone())))
+        .fold(None, |a: Option<(f64, String)>, b| match a {
+            Some(x) if x.0 >= b.0 => Some(x),
+            _ => Some(b),
+        });
+    Assessment {
+        capable_men,
+        capable_women,
+        rula_max,
+        reba_max,
+        back_compression_max_n: back.as_ref().map(|b| b.0),
+        back_compression_phase: back.map(|b| b.1),
+        lifting: lifting::assess_lifts(task, plan).map(|r| r.map_err(|e| e.to_string())),
+        meaning: meaning::meaning(task, plan),
+        rest: rest::rest_advice(task, plan, floor),
+        uncertainty: uncertainty::sensitivity(task, plan, floor),
+        phases,
+    }
+}

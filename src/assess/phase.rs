@@ -1,0 +1,273 @@
+//! Everything an ergonomist reads off one planned posture: its angles and a description in words,
+//! RULA and REBA, the low back's compression and shear, and the share of men and women strong
+//! enough for every muscle group's load.
+
+use super::angles::BodyAngles;
+use super::low_back::{low_back, BackParams, LowBack, LumbarLoad};
+use super::reba::{self, Reba, RebaActivity, RebaPosture, RebaSide, RebaThresholds};
+use super::rula::{score_body, Rula, RulaActivity};
+use crate::body::strength::normal_cdf;
+use crate::body::{Direction, JointKind};
+use crate::plan::posture::PostureWork;
+use crate::plan::{Plan, Task};
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Share of men and women strong enough for a load.
+#[derive(Debug, Clone, Serialize)]
+pub struct Capable {
+    pub half_joint: String,
+    pub group: String,
+    /// The torque this group must produce \[N·m\].
+    pub required_nm: f64,
+    /// Share of the population (0..1) whose strength at this posture exceeds it.
+    pub men: f64,
+    pub women: f64,
+}
+
+/// The assessment of one phase's posture.
+#[derive(Debug, Clone, Serialize)]
+pub struct PhaseAssessment {
+    pub phase: String,
+    /// The posture in words ("trunk flexed 20°, twisted 15° to the left").
+    pub posture_words: String,
+    /// Height of the hands above the floor \[m\] (mean of the hands used).
+    pub hand_height_m: Option<f64>,
+    pub load_kg: f64,
+    pub angles: Option<BodyAngles>,
+    /// RULA of the arm that scores worse (and the other arm's, for the record).
+    pub rula: Option<Rula>,
+    pub rula_other_arm: Option<Rula>,
+    pub reba: Option<Reba>,
+    /// L5/S1 compression and shear (bodies with a lumbar joint).
+    pub low_back: Option<LowBack>,
+    /// The least capable muscle groups, lowest first (at most 5), and the lowest shares.
+    pub capable: Vec<Capable>,
+    pub capable_men: f64,
+    pub capable_women: f64,
+}
+
+/// How a phase is used (RULA/REBA activity): load, hold time, repetition.
+fn activity(task: &Task, p: usize) -> (f64, f64, f64) {
+    let ph = &task.phases[p];
+    let g = task.gravity_m_s2.norm().max(1e-9);
+    let load_kg = ph.total_force_n().norm() / g;
+    let repeats = task.phases.iter().filter(|o| o.same_work(ph)).count() as f64;
+    (load_kg, ph.duration_s, repeats * 60.0 / task.cycle_s())
+}
+
+/// The resultant force and moment about L5/S1 of everything above it (upper-body weight and the
+/// hand loads), after the statics in `pw`; and the trunk's axes. `None` without a lumbar joint.
+fn lumbar_load(task: &Task, pw: &PostureWork) -> Option<LumbarLoad> {
+    let m = &task.model;
+    let k = m.q_index("lumbar_flexion").ok()?;
+    let trunk = m.frame_link("trunk").ok()?;
+    let d = &pw.data;
+    let o = d.origin_w[k];
+    let g = task.gravity_m_s2;
+    // mass and first moment of the subtree above L5/S1
+    let mut mass = 0.0;
+    let mut first = Vector3::zeros();
+    for (b, body) in m.bodies.iter().enumerate().skip(1) {
+        if m.q_is_ancestor_or_self(k, b - 1) && body.mass_kg > 0.0 {
+            mass += body.mass_kg;
+            first += body.mass_kg * (d.body_rot[b] * body.com_m + d.body_pos[b]);
+        }
+    }
+    let mut force = mass * g;
+    let mut moment = (first - mass * o).cross(&g);
+    for (e, ld) in d.loads.iter().enumerate() {
+        let body = m.link_in_body[ld.link].body;
+        if m.q_moves_body(k, body) {
+            force += ld.force_n;
+            moment += (d.load_point_w[e] - o).cross(&ld.force_n) + ld.moment_nm;
+        }
+    }
+    let (r_trunk, _) = d.link_pose(m, trunk);
+    let up = r_trunk * Vector3::z();
+    let fwd = r_trunk * Vector3::x();
+    Some(LumbarLoad {
+        moment_nm: [moment.x, moment.y, moment.z],
+        force_n: [force.x, force.y, force.z],
+        spine_axis: [up.x, up.y, up.z],
+        forward_axis: [fwd.x, fwd.y, fwd.z],
+    })
+}
+
+/// The posture in words, from its angles.
+pub fn describe(a: &BodyAngles) -> String {
+    let mut parts = Vec::new();
+    let side = |v: f64| if v > 0.0 { "left" } else { "right" };
+    let tf = a.trunk_flexion_deg;
+    if tf.abs() < 5.0 {
+        parts.push("trunk upright".to_string());
+    } else if tf > 0.0 {
+        parts.push(format!("trunk flexed {tf:.0}°"));
+    } else {
+        parts.push(format!("trunk extended {:.0}°", -tf));
+    }
+    if a.trunk_twist_deg.abs() >= 5.0 {
+        parts.push(format!(
+            "twisted {:.0}° to the {}",
+            a.trunk_twist_deg.abs(),
+            side(a.trunk_twist_deg)
+        ));
+    }
+    if a.trunk_side_bend_deg.abs() >= 5.0 {
+        parts.push(format!(
+            "bent {:.0}° to the {}",
+            a.trunk_side_bend_deg.abs(),
+            side(a.trunk_side_bend_deg)
+        ));
+    }
+    if a.neck_flexion_deg.abs() >= 10.0 {
+        parts.push(if a.neck_flexion_deg > 0.0 {
+            format!("head bowed {:.0}°", a.neck_flexion_deg)
+        } else {
+            format!("head tilted back {:.0}°", -a.neck_flexion_deg)
+        });
+    }
+    for (name, arm) in [("right", &a.right), ("left", &a.left)] {
+        if arm.upper_arm_flexion_deg.abs() >= 20.0 || arm.upper_arm_abduction_deg >= 20.0 {
+            parts.push(format!(
+                "{name} upper arm raised {:.0}° forward{}",
+                arm.upper_arm_flexion_deg,
+                if arm.upper_arm_abduction_deg >= 20.0 {
+                    format!(", {:.0}° out to the side", arm.upper_arm_abduction_deg)
+                } else {
+                    String::new()
+                }
+            ));
+        }
+    }
+    let knees = a.right_knee_flexion_deg.max(a.left_knee_flexion_deg);
+    if knees >= 30.0 {
+        parts.push(format!("knees bent {knees:.0}°"));
+    }
+    if !a.both_feet_bear_weight {
+        parts.push("weight on one foot".into());
+    }
+    parts.join(", ")
+}
+
+/// Assesses the last planned posture of every phase of `plan`.
+pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
+    let mut pw = PostureWork::new(task);
+    let thresholds = RebaThresholds::default();
+    task.phases
+        .iter()
+        .enumerate()
+        .map(|(p, ph)| {
+            let q = &plan.summary.phases[p].q_rad;
+            pw.statics(task, q, &ph.hand_force_n);
+            let share = pw.ground.map(|g| g.left_share);
+            let mut data = pw.data.clone();
+            let angles = BodyAngles::measure(&task.model, &mut data, q, share).ok();
+            let (load_kg, held_s, repeats) = activity(task, p);
+            let right_heavier = ph.hand_force_n[0].norm() >= ph.hand_force_n[1].norm();
+            let (rula, rula_other) = match &angles {
+                Some(a) => {
+                    let (r, o) = score_body(
+                        a,
+                        &RulaActivity {
+                            load_kg,
+                            held_s,
+                            repeats_per_min: repeats,
+                        },
+                        right_heavier,
+                    );
+                    (Some(r), Some(o))
+                }
+                None => (None, None),
+            };
+            let reba = angles.as_ref().map(|a| {
+                let side = |arm: &super::angles::ArmAngles| RebaSide {
+                    upper_arm_flexion_deg: arm.upper_arm_flexion_deg,
+                    upper_arm_abduction_deg: arm.upper_arm_abduction_deg,
+                    shoulder_raised: false,
+                    arm_supported_or_leaning: false,
+                    elbow_flexion_deg: arm.elbow_flexion_deg,
+                    wrist_flexion_deg: arm.wrist_flexion_deg,
+                    wrist_deviated_or_twisted: thresholds
+                        .wrist_deviated_or_twisted(arm.wrist_deviation_deg, arm.forearm_pronation_deg),
+                };
+                reba::score(
+                    &RebaPosture {
+                        trunk_flexion_deg: a.trunk_flexion_deg,
+                        trunk_side_bend_deg: a.trunk_side_bend_deg,
+                        trunk_twist_deg: a.trunk_twist_deg,
+                        neck_flexion_deg: a.neck_flexion_deg,
+                        neck_side_bend_deg: a.neck_side_bend_deg,
+                        neck_twist_deg: a.neck_twist_deg,
+                        bilateral_weight_bearing: a.both_feet_bear_weight,
+                        knee_flexion_deg: a.right_knee_flexion_deg.max(a.left_knee_flexion_deg),
+                        right: side(&a.right),
+                        left: side(&a.left),
+                    },
+                    &RebaActivity {
+                        load_kg,
+                        shock_or_rapid_force: false,
+                        coupling: reba::Coupling::Fair,
+                        static_over_1_min: held_s > 60.0,
+                        repeated_over_4_per_min: repeats > 4.0,
+                        rapid_large_posture_change_or_unstable_base: false,
+                    },
+                    &thresholds,
+                )
+            });
+            let low = lumbar_load(task, &pw).and_then(|l| low_back(&l, &BackParams::default()).ok());
+            let mut capable: Vec<Capable> = task
+                .half_joints
+                .iter()
+                .filter_map(|h| {
+                    let tau = pw.data.tau_nm[h.q_index];
+                    let required = match h.direction {
+                        Direction::Positive => tau.max(0.0),
+                        Direction::Negative => (-tau).max(0.0),
+                    };
+                    if required <= 0.0 || task.model.q_joint(h.q_index).kind == JointKind::Prismatic {
+                        return None;
+                    }
+                    let factor = h.posture_factor(q);
+                    let share = |s: &crate::body::strength::MeanSd| {
+                        if s.sd_nm <= 0.0 {
+                            if s.mean_nm * factor > required { 1.0 } else { 0.0 }
+                        } else {
+                            1.0 - normal_cdf((required / factor - s.mean_nm) / s.sd_nm)
+                        }
+                    };
+                    Some(Capable {
+                        half_joint: h.id.clone(),
+                        group: h.group.clone(),
+                        required_nm: required,
+                        men: share(&h.male),
+                        women: share(&h.female),
+                    })
+                })
+                .collect();
+            capable.sort_by(|a, b| a.women.min(a.men).total_cmp(&b.women.min(b.men)));
+            let capable_men = capable.iter().map(|c| c.men).fold(1.0, f64::min);
+            let capable_women = capable.iter().map(|c| c.women).fold(1.0, f64::min);
+            capable.truncate(5);
+            let hands: Vec<Vector3<f64>> = (0..2)
+                .filter(|&h| ph.targets_m[h].is_some())
+                .filter_map(|h| pw.hand_position(task, h))
+                .collect();
+            PhaseAssessment {
+                phase: ph.name.clone(),
+                posture_words: angles.as_ref().map(describe).unwrap_or_default(),
+                hand_height_m: (!hands.is_empty())
+                    .then(|| hands.iter().map(|v| v.z).sum::<f64>() / hands.len() as f64),
+                load_kg,
+                angles,
+                rula,
+                rula_other_arm: rula_other,
+                reba,
+                low_back: low,
+                capable,
+                capable_men,
+                capable_women,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,151 @@
+//! What the subcommands share: error kinds and exit codes, standard output, outputs, options.
+
+use anyhow::anyhow;
+use posture_opt::io::OutputSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// An error caused by the user's input (exit 2).
+#[derive(Debug)]
+pub struct BadInput(pub String);
+impl std::fmt::Display for BadInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+impl std::error::Error for BadInput {}
+
+/// The reader of standard output went away: end quietly.
+#[derive(Debug)]
+pub struct ClosedOutput;
+impl std::fmt::Display for ClosedOutput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("standard output closed")
+    }
+}
+impl std::error::Error for ClosedOutput {}
+
+pub fn bad(msg: impl Into<String>) -> anyhow::Error {
+    anyhow!(BadInput(msg.into()))
+}
+
+/// A library error: bad input (exit 2) unless the library says otherwise.
+pub fn lib_err(e: impl std::fmt::Display) -> anyhow::Error {
+    bad(e.to_string())
+}
+
+/// Maps a result to the exit code, printing the error.
+pub fn exit(r: anyhow::Result<()>) -> ExitCode {
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.downcast_ref::<ClosedOutput>().is_some() => ExitCode::SUCCESS,
+        Err(e) => {
+            let bad_input = e.chain().any(|c| c.downcast_ref::<BadInput>().is_some());
+            eprintln!("error: {e}");
+            if bad_input {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
+        }
+    }
+}
+
+/// Writes to standard output: a closed pipe ends the run quietly, any other failure (a full
+/// disk) is reported with exit 2.
+pub fn stdout(bytes: &[u8]) -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    let r = out.write_all(bytes).and_then(|_| out.flush());
+    match r {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(anyhow!(ClosedOutput)),
+        Err(e) => Err(bad(format!("cannot write to standard output: {e}"))),
+    }
+}
+
+/// Serialises to pretty JSON (serde) and prints it.
+pub fn print_json(v: &impl serde::Serialize) -> anyhow::Result<()> {
+    let mut s = serde_json::to_vec_pretty(v)?;
+    s.push(b'\n');
+    stdout(&s)
+}
+
+/// The outputs of one run, checked against its inputs, written all or none.
+pub struct Outputs {
+    set: OutputSet,
+}
+
+impl Outputs {
+    pub fn new(inputs: &[&Path]) -> Self {
+        let mut set = OutputSet::new();
+        for p in inputs {
+            set.input(p);
+        }
+        Outputs { set }
+    }
+    pub fn add(&mut self, what: &str, path: &Option<PathBuf>, bytes: impl FnOnce() -> anyhow::Result<Vec<u8>>) -> anyhow::Result<()> {
+        if let Some(p) = path {
+            self.set.add(what, p, bytes()?);
+        }
+        Ok(())
+    }
+    /// Checks every output before the (possibly long) work starts.
+    pub fn precheck(paths: &[(&str, &Option<PathBuf>)], inputs: &[&Path]) -> anyhow::Result<()> {
+        let mut set = OutputSet::new();
+        for p in inputs {
+            set.input(p);
+        }
+        for (what, p) in paths {
+            if let Some(p) = p {
+                set.add(what, p, Vec::new());
+            }
+        }
+        set.check().map(|_| ()).map_err(|e| bad(e.to_string()))
+    }
+    pub fn write(self) -> anyhow::Result<()> {
+        self.set.write_all().map_err(|e| bad(e.to_string()))
+    }
+}
+
+/// Options shared by `plan`, `compare` and `sweep`.
+#[derive(clap::Args, Clone)]
+pub struct AssessArgs {
+    /// Plan once for the whole task and hold the postures (no re-planning as capacity falls).
+    #[arg(long)]
+    pub no_adapt: bool,
+    /// Minimise fatigue only (no joint-range discomfort term).
+    #[arg(long)]
+    pub fatigue_only: bool,
+    /// Write the result as one JSON document on standard output.
+    #[arg(long)]
+    pub json: bool,
+    /// Also write a self-contained HTML report.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Capacity floor for the work/rest advice (fraction of MVC, strictly between 0 and 1).
+    #[arg(long, default_value_t = posture_opt::assess::rest::DEFAULT_CAPACITY_FLOOR, value_parser = parse_floor)]
+    pub capacity_floor: f64,
+}
+
+fn parse_floor(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(f) if f.is_finite() && f > 0.0 && f < 1.0 => Ok(f),
+        _ => Err(format!("must be a number between 0 and 1, got '{s}'")),
+    }
+}
+
+impl AssessArgs {
+    pub fn plan_options(&self) -> posture_opt::plan::PlanOptions {
+        posture_opt::plan::PlanOptions {
+            adapt: !self.no_adapt,
+            fatigue_only: self.fatigue_only,
+            ..Default::default()
+        }
+    }
+}
+
+/// Parses `--sex`.
+pub fn parse_sex(s: &str) -> Result<posture_opt::body::Sex, String> {
+    s.parse()
+}

@@ -1,0 +1,110 @@
+//! `posture-opt fit DATA.csv`: k per body region (and the recovery rate) from a user's own
+//! endurance times or capacity measurements, with confidence intervals; `--out` writes a
+//! parameter file a task uses with `fatigue: {parameters_file: FILE}`.
+
+use crate::common::{bad, lib_err, print_json, stdout, Outputs};
+use posture_opt::fatigue::fit::{self, Fit, FitOptions};
+use posture_opt::fatigue::params::ParameterSets;
+use posture_opt::io::read_text;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Measurements (CSV: region, load_fmvc, on_s, off_s, endurance_s | t_s, capacity).
+    data: PathBuf,
+    /// Fit the recovery rate at rest too (default: when the data hold intermittent holds).
+    #[arg(long, conflicts_with = "no_recovery_fit")]
+    recovery_fit: bool,
+    /// Keep the recovery rate at rest at --rest-per-min.
+    #[arg(long)]
+    no_recovery_fit: bool,
+    /// Recovery rate at rest [1/min] to start from (or keep).
+    #[arg(long, default_value_t = 0.37)]
+    rest_per_min: f64,
+    /// Load (fraction of MVC) from which recovery stops (kept fixed).
+    #[arg(long, default_value_t = 0.085)]
+    limit_fmvc: f64,
+    /// Parameter set whose values the regions not in the data keep.
+    #[arg(long, default_value = "default-2026")]
+    base: String,
+    /// Write the fitted parameter set (YAML) here.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(a: Args) -> anyhow::Result<()> {
+    let name = a.data.display().to_string();
+    if !(a.rest_per_min.is_finite() && (0.0..=posture_opt::fatigue::ma::R_MAX_PER_MIN).contains(&a.rest_per_min)) {
+        return Err(bad(format!("--rest-per-min must be 0..{} 1/min", posture_opt::fatigue::ma::R_MAX_PER_MIN)));
+    }
+    if !(a.limit_fmvc.is_finite() && (0.01..=1.0).contains(&a.limit_fmvc)) {
+        return Err(bad("--limit-fmvc must be 0.01..1"));
+    }
+    let sets = ParameterSets::shipped();
+    let Some(base) = sets.get(&a.base) else {
+        return Err(bad(format!("--base: unknown parameter set '{}'; choose one of {}", a.base, sets.names().join(", "))));
+    };
+    Outputs::precheck(&[("--out", &a.out)], &[&a.data])?;
+    let text = read_text(&a.data).map_err(lib_err)?;
+    let rows = fit::parse_rows(&text, &name).map_err(lib_err)?;
+    let opts = FitOptions {
+        rest_per_min: a.rest_per_min,
+        limit_fmvc: a.limit_fmvc,
+        fit_rest: if a.recovery_fit {
+            Some(true)
+        } else if a.no_recovery_fit {
+            Some(false)
+        } else {
+            None
+        },
+    };
+    let f = fit::fit(&rows, &name, opts).map_err(lib_err)?;
+    let mut out = Outputs::new(&[&a.data]);
+    out.add("--out", &a.out, || {
+        let set = f.parameter_set(base);
+        let mut y = format!(
+            "# Fatigue parameters fitted by `posture-opt fit {name}`; use in a task with\n# fatigue: {{parameters_file: <this file>}}\n"
+        );
+        y.push_str(&serde_saphyr::to_string(&set).map_err(|e| anyhow::anyhow!(e.to_string()))?);
+        Ok(y.into_bytes())
+    })?;
+    out.write()?;
+    if a.json {
+        print_json(&f)
+    } else {
+        stdout(text_summary(&f).as_bytes())
+    }
+}
+
+fn text_summary(f: &Fit) -> String {
+    let mut o = String::new();
+    let _ = writeln!(o, "{}: {} measurements, {} parameters ({})", f.source, f.rows, f.parameters, f.method);
+    let _ = writeln!(o, "{:<10} {:>5} {:>9} {:>21} {:>10} {:>10}", "region", "rows", "k [1/min]", "95 % CI", "rms log", "max error");
+    for r in &f.regions {
+        let _ = writeln!(
+            o,
+            "{:<10} {:>5} {:>9.4} {:>10.4} – {:<8.4} {:>10.3} {:>9.0} %",
+            r.region, r.rows, r.k_per_min.value, r.k_per_min.low, r.k_per_min.high, r.rms_log_error, 100.0 * r.max_relative_error
+        );
+    }
+    if f.rest_fitted {
+        let _ = writeln!(
+            o,
+            "recovery at rest R_rest = {:.4} /min (95 % CI {:.4} – {:.4}); recovery stops at {:.3} MVC",
+            f.rest_per_min.value, f.rest_per_min.low, f.rest_per_min.high, f.limit_fmvc
+        );
+    } else {
+        let _ = writeln!(o, "recovery at rest kept at {:.4} /min; stops at {:.3} MVC", f.rest_per_min.value, f.limit_fmvc);
+    }
+    let _ = writeln!(
+        o,
+        "overall rms of ln(predicted/measured) = {:.3}; {} after {} iterations",
+        f.rms_log_error,
+        if f.converged { "converged" } else { "NOT converged" },
+        f.iterations
+    );
+    o
+}

@@ -1,0 +1,531 @@
+//! Fitting the model to a user's own measurements: k per body region (and the recovery rate at
+//! rest) from endurance times or capacity decline, sustained or intermittent holds.
+//!
+//! **Data** (CSV, header first; one row per measurement):
+//!
+//! | column | meaning |
+//! |---|---|
+//! | `region` | body region: general, trunk, neck, shoulder, elbow, grip, hip, knee, ankle |
+//! | `load_fmvc` | the held load, fraction of MVC (0 < f ≤ 1) |
+//! | `on_s`, `off_s` | intermittent holds: seconds on, seconds off (both empty or `off_s` = 0: sustained) |
+//! | `endurance_s` | measured time until the load could no longer be held (from the start), or empty |
+//! | `t_s`, `capacity` | or: capacity (fraction of MVC, 0..1] measured at time `t_s` from the start |
+//!
+//! Each row gives either `endurance_s`, or `t_s` and `capacity`.
+//!
+//! **Model**: `dc/dt = −k f c + R(f)(1 − c)` with the perfusion-limited recovery
+//! `R(f) = R_rest · x²(3 − 2x)`, `x = 1 − f/f_lim` (no recovery above `f_lim`), held exactly
+//! over each on and off interval. **Fitted**: ln k per region, and ln R_rest (shared) when the data
+//! contain intermittent holds; `f_lim` is fixed (given). **Residuals** are log ratios (predicted
+//! over measured endurance time or capacity), so every row counts as a relative error; a
+//! predicted endurance beyond 24 h counts as 24 h. **Method**: Levenberg–Marquardt on the log
+//! parameters with a finite-difference Jacobian. **Confidence intervals** (95 %): the
+//! asymptotic covariance `s² (JᵀJ)⁻¹`, `s² = SSR/(n − p)`, with Student's t for n − p degrees of
+//! freedom, on the log parameters, then exponentiated (so they stay positive).
+
+use super::ma::{MaParams, MaState, Recovery, K_MAX_PER_MIN, K_MIN_PER_MIN};
+use super::params::{ParameterSet, RecoverySpec, RegionK};
+use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, StudentsT};
+use std::collections::BTreeMap;
+
+/// Regions a row may name.
+pub const REGIONS: [&str; 9] = ["general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle"];
+
+/// Longest endurance a prediction may reach \[s\] (24 h).
+pub const MAX_ENDURANCE_S: f64 = 86_400.0;
+
+/// Most rows read.
+pub const MAX_ROWS: usize = 100_000;
+
+/// One measurement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    pub line: usize,
+    pub region: String,
+    pub load_fmvc: f64,
+    /// (on, off) seconds for intermittent holds.
+    pub cycle_s: Option<(f64, f64)>,
+    pub what: Measured,
+}
+
+/// What a row measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Measured {
+    EnduranceS(f64),
+    Capacity { t_s: f64, capacity: f64 },
+}
+
+/// Why the data or the fit were refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FitError {
+    #[error("{file}: line {line}: {problem}")]
+    Row { file: String, line: usize, problem: String },
+    #[error("{file}: {problem}")]
+    Data { file: String, problem: String },
+}
+
+/// Parses the data (`file` names it in messages).
+pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
+    let mut rdr = ::csv::ReaderBuilder::new()
+        .trim(::csv::Trim::All)
+        .flexible(false)
+        .from_reader(text.as_bytes());
+    let data_err = |problem: String| FitError::Data {
+        file: file.to_string(),
+        problem,
+    };
+    let headers = rdr.headers().map_err(|e| data_err(e.to_string()))?.clone();
+    let col = |name: &str| headers.iter().position(|h| h == name);
+    const KNOWN: [&str; 7] = ["region", "load_fmvc", "on_s", "off_s", "endurance_s", "t_s", "capacity"];
+    for h in headers.iter() {
+        if !KNOWN.contains(&h) {
+            return Err(data_err(format!(
+                "unknown column '{h}'{}; the columns are {}",
+                crate::schema::did_you_mean(h, KNOWN.iter().copied()),
+                KNOWN.join(", ")
+            )));
+        }
+    }
+    let (Some(c_region), Some(c_load)) = (col("region"), col("load_fmvc")) else {
+        return Err(data_err("the header needs the columns region and load_fmvc".into()));
+    };
+    let (c_on, c_off, c_end, c_t, c_cap) = (col("on_s"), col("off_s"), col("endurance_s"), col("t_s"), col("capacity"));
+    let mut rows = Vec::new();
+    for (i, rec) in rdr.records().enumerate() {
+        let line = i + 2;
+        let bad = |problem: String| FitError::Row {
+            file: file.to_string(),
+            line,
+            problem,
+        };
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        if rows.len() >= MAX_ROWS {
+            return Err(bad(format!("more than {MAX_ROWS} rows")));
+        }
+        let get = |c: Option<usize>, name: &str| -> Result<Option<f64>, FitError> {
+            match c.and_then(|c| rec.get(c)).filter(|s| !s.is_empty()) {
+                None => Ok(None),
+                Some(s) => match s.parse::<f64>() {
+                    Ok(v) if v.is_finite() => Ok(Some(v)),
+                    _ => Err(bad(format!("{name}: '{s}' is not a finite number"))),
+                },
+            }
+        };
+        let region = rec.get(c_region).unwrap_or_default().to_string();
+        if !REGIONS.contains(&region.as_str()) {
+            return Err(bad(format!(
+                "region '{region}' is not one of {}{}",
+                REGIONS.join(", "),
+                crate::schema::did_you_mean(&region, REGIONS.iter().copied())
+            )));
+        }
+        let load = get(Some(c_load), "load_fmvc")?.ok_or_else(|| bad("load_fmvc is empty".into()))?;
+        if !(load > 0.0 && load <= 1.0) {
+            return Err(bad(format!("load_fmvc must be in (0, 1], got {load}")));
+        }
+        let on = get(c_on, "on_s")?;
+        let off = get(c_off, "off_s")?;
+        let cycle_s = match (on, off) {
+            (None, None) | (Some(_), None) | (_, Some(0.0)) => None,
+            (Some(a), Some(b)) if a > 0.0 && b > 0.0 && a <= MAX_ENDURANCE_S && b <= MAX_ENDURANCE_S => Some((a, b)),
+            (None, Some(_)) => return Err(bad("off_s needs on_s".into())),
+            (Some(a), Some(b)) => return Err(bad(format!("on_s and off_s must be in (0, 86400] s, got {a} and {b}"))),
+        };
+        let what = match (get(c_end, "endurance_s")?, get(c_t, "t_s")?, get(c_cap, "capacity")?) {
+            (Some(e), None, None) if e > 0.0 && e <= MAX_ENDURANCE_S => Measured::EnduranceS(e),
+            (Some(e), None, None) => return Err(bad(format!("endurance_s must be in (0, 86400] s, got {e}"))),
+            (None, Some(t), Some(c)) if t > 0.0 && t <= MAX_ENDURANCE_S && c > 0.0 && c <= 1.0 => {
+                Measured::Capacity { t_s: t, capacity: c }
+            }
+            (None, Some(t), Some(c)) => {
+                return Err(bad(format!("t_s must be in (0, 86400] s and capacity in (0, 1], got {t} and {c}")));
+            }
+            _ => return Err(bad("give endurance_s, or t_s and capacity".into())),
+        };
+        rows.push(Row {
+            line,
+            region,
+            load_fmvc: load,
+            cycle_s,
+            what,
+        });
+    }
+    if rows.is_empty() {
+        return Err(data_err("no measurements after the header".into()));
+    }
+    Ok(rows)
+}
+
+/// The model's prediction for a row: endurance time \[s\] (capped at 24 h) or capacity.
+pub fn predict(p: &MaParams, row: &Row) -> f64 {
+    let f = row.load_fmvc;
+    let mut s = MaState::FRESH;
+    let (on, off) = row.cycle_s.unwrap_or((MAX_ENDURANCE_S, 0.0));
+    let mut t = 0.0;
+    match row.what {
+        Measured::EnduranceS(_) => {
+            while t < MAX_ENDURANCE_S {
+                if let Some(te) = p.time_to_exhaustion_s(s.capacity, f) {
+                    if te <= on {
+                        return (t + te).min(MAX_ENDURANCE_S);
+                    }
+                }
+                p.hold(&mut s, f, on);
+                t += on;
+                if off > 0.0 {
+                    p.hold(&mut s, 0.0, off);
+                    t += off;
+                }
+            }
+            MAX_ENDURANCE_S
+        }
+        Measured::Capacity { t_s, .. } => {
+            while t < t_s {
+                let d = on.min(t_s - t);
+                p.hold(&mut s, f, d);
+                t += d;
+                if t >= t_s {
+                    break;
+                }
+                let d = off.min(t_s - t);
+                if d > 0.0 {
+                    p.hold(&mut s, 0.0, d);
+                    t += d;
+                }
+            }
+            s.capacity
+        }
+    }
+}
+
+fn measured(row: &Row) -> f64 {
+    match row.what {
+        Measured::EnduranceS(e) => e,
+        Measured::Capacity { capacity, .. } => capacity,
+    }
+}
+
+/// A fitted value with its 95 % confidence interval.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Estimate {
+    pub value: f64,
+    pub low: f64,
+    pub high: f64,
+}
+
+/// Fit quality of one region.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RegionFit {
+    pub region: String,
+    pub rows: usize,
+    pub k_per_min: Estimate,
+    /// Root mean square of the log-ratio residuals.
+    pub rms_log_error: f64,
+    /// Largest |predicted/measured − 1|.
+    pub max_relative_error: f64,
+}
+
+/// The fit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fit {
+    pub source: String,
+    pub rows: usize,
+    pub parameters: usize,
+    pub regions: Vec<RegionFit>,
+    /// Recovery rate at rest \[1/min\]: fitted (with CI) or the given value.
+    pub rest_per_min: Estimate,
+    pub rest_fitted: bool,
+    pub limit_fmvc: f64,
+    pub rms_log_error: f64,
+    pub iterations: usize,
+    pub converged: bool,
+    pub method: &'static str,
+}
+
+pub const METHOD: &str = "Levenberg-Marquardt on ln k per region (and ln R_rest when the data hold intermittent work); residuals ln(predicted/measured); 95 % CIs from s²(JᵀJ)⁻¹ with Student's t, exponentiated";
+
+/// Fitting options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitOptions {
+    /// R_rest \[1/min\] to start from (and to keep when not fitted).
+    pub rest_per_min: f64,
+    pub limit_fmvc: f64,
+    /// Fit R_rest: `None` = when the data hold intermittent holds.
+    pub fit_rest: Option<bool>,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        FitOptions {
+            rest_per_min: 0.37,
+            limit_fmvc: 0.085,
+            fit_rest: None,
+        }
+    }
+}
+
+struct Problem<'a> {
+    rows: &'a [Row],
+    regions: Vec<String>,
+    region_of: Vec<usize>,
+    fit_rest: bool,
+    opts: FitOptions,
+}
+
+impl Problem<'_> {
+    fn n_params(&self) -> usize {
+        self.regions.len() + usize::from(self.fit_rest)
+    }
+
+    fn params(&self, theta: &[f64], g: usize) -> MaParams {
+        let k = theta[g].exp().clamp(K_MIN_PER_MIN, K_MAX_PER_MIN);
+        let rest = if self.fit_rest {
+            theta[self.regions.len()].exp().min(super::ma::R_MAX_PER_MIN)
+        } else {
+            self.opts.rest_per_min
+        };
+        let recovery = if rest > 0.0 {
+            Recovery::Perfusion {
+                rest_per_min: rest,
+                limit_fmvc: self.opts.limit_fmvc,
+            }
+        } else {
+            Recovery::None
+        };
+        MaParams { k_per_min: k, recovery }
+    }
+
+    fn residuals(&self, theta: &[f64], out: &mut [f64]) {
+        for (i, row) in self.rows.iter().enumerate() {
+            let p = self.params(theta, self.region_of[i]);
+            out[i] = (predict(&p, row).max(1e-12) / measured(row)).ln();
+        }
+    }
+}
+
+fn ssr(r: &[f64]) -> f64 {
+    r.iter().map(|x| x * x).sum()
+}
+
+/// Fits the rows (`source` names the data in the result).
+pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError> {
+    let mut regions: Vec<String> = Vec::new();
+    let region_of: Vec<usize> = rows
+        .iter()
+        .map(|r| match regions.iter().position(|g| g == &r.region) {
+            Some(i) => i,
+            None => {
+                regions.push(r.region.clone());
+                regions.len() - 1
+            }
+        })
+        .collect();
+    let intermittent = rows.iter().any(|r| r.cycle_s.is_some());
+    let fit_rest = opts.fit_rest.unwrap_or(intermittent);
+    let pr = Problem {
+        rows,
+        regions,
+        region_of,
+        fit_rest,
+        opts,
+    };
+    let np = pr.n_params();
+    let n = rows.len();
+    if n <= np {
+        return Err(FitError::Data {
+            file: source.to_string(),
+            problem: format!("{n} measurements cannot fit {np} parameters with confidence intervals: give more rows than parameters"),
+        });
+    }
+    // start: k from each region's rows by the closed form of a sustained hold without recovery
+    let mut theta = vec![0.0; np];
+    for (g, _) in pr.regions.iter().enumerate() {
+        let ks: Vec<f64> = rows
+            .iter()
+            .zip(&pr.region_of)
+            .filter(|(_, rg)| **rg == g)
+            .filter_map(|(r, _)| match r.what {
+                Measured::EnduranceS(e) => Some(-r.load_fmvc.ln() / (r.load_fmvc * e / 60.0)),
+                Measured::Capacity { t_s, capacity } => {
+                    Some((-capacity.ln() / (r.load_fmvc * t_s / 60.0)).max(K_MIN_PER_MIN))
+                }
+            })
+            .filter(|k| k.is_finite() && *k > 0.0)
+            .collect();
+        let k0 = if ks.is_empty() { 1.0 } else { ks.iter().map(|k| k.ln()).sum::<f64>() / ks.len() as f64 };
+        theta[g] = k0.clamp(K_MIN_PER_MIN.ln(), K_MAX_PER_MIN.ln());
+    }
+    if fit_rest {
+        theta[np - 1] = opts.rest_per_min.max(1e-3).ln();
+    }
+    let mut r = vec![0.0; n];
+    let mut r2 = vec![0.0; n];
+    let mut jac = nalgebra::DMatrix::<f64>::zeros(n, np);
+    pr.residuals(&theta, &mut r);
+    let mut cost = ssr(&r);
+    let mut lambda = 1e-3;
+    let (mut iterations, mut converged) = (0, false);
+    let jacobian = |theta: &[f64], jac: &mut nalgebra::DMatrix<f64>, r2: &mut [f64]| {
+        let h = 1e-6;
+        let mut t = theta.to_vec();
+        let mut rp = vec![0.0; n];
+        for j in 0..np {
+            t[j] = theta[j] + h;
+            pr.residuals(&t, &mut rp);
+            t[j] = theta[j] - h;
+            pr.residuals(&t, r2);
+            t[j] = theta[j];
+            for i in 0..n {
+                jac[(i, j)] = (rp[i] - r2[i]) / (2.0 * h);
+            }
+        }
+    };
+    while iterations < 200 {
+        iterations += 1;
+        jacobian(&theta, &mut jac, &mut r2);
+        let jt = jac.transpose();
+        let jtj = &jt * &jac;
+        let g = &jt * nalgebra::DVector::from_column_slice(&r);
+        if g.amax() < 1e-10 {
+            converged = true;
+            break;
+        }
+        let mut improved = false;
+        for _ in 0..30 {
+            let mut a = jtj.clone();
+            for d in 0..np {
+                a[(d, d)] += lambda * jtj[(d, d)].max(1e-12);
+            }
+            let Some(step) = a.cholesky().map(|c| c.solve(&(-&g))) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let trial: Vec<f64> = theta.iter().zip(step.iter()).map(|(t, s)| t + s).collect();
+            pr.residuals(&trial, &mut r2);
+            let c2 = ssr(&r2);
+            if c2 < cost {
+                let rel = (cost - c2) / cost.max(1e-300);
+                theta = trial;
+                r.copy_from_slice(&r2);
+                cost = c2;
+                lambda = (lambda / 3.0).max(1e-12);
+                improved = true;
+                if rel < 1e-12 || step.amax() < 1e-10 {
+                    converged = true;
+                }
+                break;
+            }
+            lambda *= 4.0;
+        }
+        if !improved || converged {
+            converged = converged || !improved;
+            break;
+        }
+    }
+    // covariance
+    jacobian(&theta, &mut jac, &mut r2);
+    let dof = (n - np) as f64;
+    let s2 = cost / dof;
+    let cov = (jac.transpose() * &jac).try_inverse();
+    let t = StudentsT::new(0.0, 1.0, dof).map(|d| d.inverse_cdf(0.975)).unwrap_or(1.96);
+    let est = |j: usize| {
+        let se = cov.as_ref().map_or(f64::INFINITY, |c| (s2 * c[(j, j)].max(0.0)).sqrt());
+        let v = theta[j];
+        Estimate {
+            value: v.exp(),
+            low: (v - t * se).exp(),
+            high: (v + t * se).min(700.0).exp(),
+        }
+    };
+    let regions = pr
+        .regions
+        .iter()
+        .enumerate()
+        .map(|(g, name)| {
+            let idx: Vec<usize> = (0..n).filter(|&i| pr.region_of[i] == g).collect();
+            RegionFit {
+                region: name.clone(),
+                rows: idx.len(),
+                k_per_min: est(g),
+                rms_log_error: (idx.iter().map(|&i| r[i] * r[i]).sum::<f64>() / idx.len() as f64).sqrt(),
+                max_relative_error: idx.iter().map(|&i| (r[i].exp() - 1.0).abs()).fold(0.0, f64::max),
+            }
+        })
+        .collect();
+    Ok(Fit {
+        source: source.to_string(),
+        rows: n,
+        parameters: np,
+        regions,
+        rest_per_min: if fit_rest {
+            est(np - 1)
+        } else {
+            Estimate {
+                value: opts.rest_per_min,
+                low: opts.rest_per_min,
+                high: opts.rest_per_min,
+            }
+        },
+        rest_fitted: fit_rest,
+        limit_fmvc: opts.limit_fmvc,
+        rms_log_error: (cost / n as f64).sqrt(),
+        iterations,
+        converged,
+        method: METHOD,
+    })
+}
+
+impl Fit {
+    /// The fit as a parameter set a task can use (`fatigue: {parameters_file: ...}`): the fitted
+    /// regions with their CIs as ranges; the other regions from `base`.
+    pub fn parameter_set(&self, base: &ParameterSet) -> ParameterSet {
+        let mut regions: BTreeMap<String, RegionK> = base.regions.clone();
+        let mut female = base.female.clone();
+        let mut male = base.male.clone();
+        for r in &self.regions {
+            let v = RegionK {
+                k: r.k_per_min.value,
+                k_low: r.k_per_min.low.max(K_MIN_PER_MIN),
+                k_high: r.k_per_min.high.min(K_MAX_PER_MIN),
+            };
+            regions.insert(r.region.clone(), v);
+            female.remove(&r.region);
+            male.remove(&r.region);
+        }
+        let (rest_low, rest_high, limit_low, limit_high) = match base.recovery {
+            RecoverySpec::Perfusion {
+                rest_low,
+                rest_high,
+                limit_low,
+                limit_high,
+                ..
+            } => (rest_low, rest_high, limit_low, limit_high),
+            RecoverySpec::None => (0.0, 0.0, self.limit_fmvc, self.limit_fmvc),
+        };
+        let (rl, rh) = if self.rest_fitted {
+            (self.rest_per_min.low, self.rest_per_min.high.min(super::ma::R_MAX_PER_MIN))
+        } else {
+            (rest_low.min(self.rest_per_min.value), rest_high.max(self.rest_per_min.value))
+        };
+        ParameterSet {
+            name: "fitted".into(),
+            description: format!(
+                "fitted by posture-opt fit to {} ({} measurements); regions not in the data from '{}'",
+                self.source, self.rows, base.name
+            ),
+            recovery: RecoverySpec::Perfusion {
+                rest_per_min: self.rest_per_min.value,
+                rest_low: rl,
+                rest_high: rh,
+                limit_fmvc: self.limit_fmvc,
+                limit_low: limit_low.min(self.limit_fmvc),
+                limit_high: limit_high.max(self.limit_fmvc),
+            },
+            k_source: format!("fit to {} (95 % confidence intervals as ranges)", self.source),
+            regions,
+            female,
+            male,
+        }
+    }
+}

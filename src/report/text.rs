@@ -1,0 +1,230 @@
+//! The human summary of a plan and its assessment.
+
+use crate::assess::rest::RestAdvice;
+use crate::assess::Assessment;
+use crate::plan::{Plan, Task};
+use std::fmt::Write;
+
+/// Work/rest advice as text lines.
+pub fn rest_summary(r: &RestAdvice) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "work and rest: {:.1} s of work and {:.1} s of rest per cycle",
+        r.work_s_per_cycle, r.current_rest_s
+    );
+    match r.model.rest_s_per_cycle {
+        Some(x) => {
+            let _ = writeln!(
+                o,
+                "  model: {x:.1} s of rest per cycle keeps every capacity >= {:.2} (lowest now {:.2}, {})",
+                r.capacity_floor, r.model.min_capacity_current, r.model.limiting_half_joint
+            );
+        }
+        None => {
+            let _ = writeln!(o, "  model: {}", r.model.note);
+        }
+    }
+    let _ = writeln!(
+        o,
+        "  Rohmert (1973) rest allowance: {:.1} s per cycle{}",
+        r.rohmert.rest_s_per_cycle,
+        if r.rohmert.limiting_half_joint.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", r.rohmert.limiting_half_joint)
+        }
+    );
+    o
+}
+
+fn pct(x: f64) -> String {
+    format!("{:.0} %", 100.0 * x)
+}
+
+/// A readable summary: the verdict first, then per phase the posture in words, the most-loaded
+/// groups, RULA/REBA and the low back, then fatigue, the baselines and work/rest.
+pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
+    let s = &p.summary;
+    let mut o = String::new();
+    let w = &task.worker;
+    let _ = writeln!(
+        o,
+        "{} — {} plan for a {} of {:.2} m and {:.0} kg (strength percentile {:.0})",
+        p.task,
+        if s.adaptive {
+            "fatigue-adaptive"
+        } else {
+            "held (not re-planned)"
+        },
+        w.sex.name(),
+        w.stature_m,
+        w.mass_kg,
+        w.strength_percentile
+    );
+    let _ = writeln!(
+        o,
+        "fatigue parameters: {} ({}); {:.0} min planned in {} cycles of {:.0} s",
+        p.fatigue_parameters.set,
+        p.fatigue_model,
+        s.planned_duration_s / 60.0,
+        task.cycles,
+        task.cycle_s()
+    );
+    let _ = writeln!(o);
+    match &s.exhaustion {
+        Some(e) => {
+            let _ = writeln!(o, "VERDICT: cannot be done as planned: {}", e.describe());
+        }
+        None => {
+            let _ = writeln!(o, "VERDICT: {}", a.meaning.words);
+        }
+    }
+    let _ = writeln!(
+        o,
+        "strong enough for every load: {} of men, {} of women; RULA up to {}, REBA up to {}{}",
+        pct(a.capable_men),
+        pct(a.capable_women),
+        a.rula_max.map(|x| x.to_string()).unwrap_or("-".into()),
+        a.reba_max.map(|x| x.to_string()).unwrap_or("-".into()),
+        match (a.back_compression_max_n, &a.back_compression_phase) {
+            (Some(c), Some(ph)) => format!("; L5/S1 compression up to {c:.0} N ('{ph}')"),
+            _ => String::new(),
+        }
+    );
+    let _ = writeln!(o);
+    for (ph, pa) in s.phases.iter().zip(&a.phases) {
+        let _ = writeln!(
+            o,
+            "phase '{}': {}{}",
+            ph.phase,
+            if pa.posture_words.is_empty() {
+                "posture planned".to_string()
+            } else {
+                pa.posture_words.clone()
+            },
+            if ph.reachable {
+                String::new()
+            } else {
+                format!(
+                    " — TARGET OUT OF REACH by {:.0} mm{}",
+                    1000.0 * ph.hand_error_m,
+                    ph.target_inside
+                        .as_ref()
+                        .map(|o| format!(" (it lies inside '{o}')"))
+                        .unwrap_or_default()
+                )
+            }
+        );
+        let loaded: Vec<String> = ph
+            .most_loaded
+            .iter()
+            .map(|(h, f)| {
+                let g = p
+                    .half_joint(h)
+                    .map(|i| p.half_joints[i].group.clone())
+                    .unwrap_or(h.clone());
+                format!("{g} {}", pct(*f))
+            })
+            .collect();
+        let _ = writeln!(o, "  most loaded: {}", loaded.join(", "));
+        let mut line = Vec::new();
+        if let Some(r) = &pa.rula {
+            line.push(format!("RULA {} ({} arm)", r.grand_score, r.side));
+        }
+        if let Some(r) = &pa.reba {
+            line.push(format!("REBA {}", r.reba_score));
+        }
+        if let Some(b) = &pa.low_back {
+            line.push(format!(
+                "L5/S1 {:.0} N compression, {:.0} N shear",
+                b.compression_n, b.shear_resultant_n
+            ));
+        }
+        line.push(format!(
+            "capable: men {}, women {}",
+            pct(pa.capable_men),
+            pct(pa.capable_women)
+        ));
+        if let Some(m) = ph.balance_margin_m {
+            line.push(format!("balance margin {:.0} mm", 1000.0 * m));
+        }
+        line.push(format!("clearance {:.0} mm", 1000.0 * ph.min_clearance_m));
+        let _ = writeln!(o, "  {}", line.join("; "));
+        let _ = writeln!(
+            o,
+            "  optimiser: {} (KKT residual {:.1e}, {} iterations, best of {} starts: #{})",
+            if ph.converged {
+                "converged"
+            } else {
+                "NOT converged"
+            },
+            ph.kkt_residual,
+            ph.iterations,
+            ph.search.seeds,
+            ph.search.best_seed + 1
+        );
+    }
+    let _ = writeln!(o);
+    let mut caps: Vec<(usize, f64)> = s.final_capacity.iter().copied().enumerate().collect();
+    caps.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let c: Vec<String> = caps
+        .iter()
+        .take(4)
+        .map(|(h, c)| format!("{} {:.2}", p.half_joints[*h].group, c))
+        .collect();
+    let _ = writeln!(o, "lowest capacities at the end: {}", c.join(", "));
+    let _ = writeln!(
+        o,
+        "lowest capacity at any time: {:.2} ({}, at {:.0} s)",
+        s.lowest_capacity,
+        p.half_joint(&s.lowest_capacity_half_joint)
+            .map(|i| p.half_joints[i].group.clone())
+            .unwrap_or_default(),
+        s.lowest_capacity_t_s
+    );
+    let _ = writeln!(
+        o,
+        "total fatigue index U = {:.2} min over {:.0} min (worst: {} {:.2} min); {} re-plans, {} QP solves",
+        s.total_u,
+        s.duration_s / 60.0,
+        p.half_joint(&s.worst_half_joint)
+            .map(|i| p.half_joints[i].group.clone())
+            .unwrap_or_default(),
+        s.worst_u,
+        s.replans,
+        s.qp_solves
+    );
+    for b in &s.baselines {
+        let _ = writeln!(
+            o,
+            "  against {}: {:.2} min{}",
+            b.name.replace('_', " "),
+            b.total_u,
+            match &b.exhaustion {
+                Some(e) => format!(" — it cannot be done: {}", e.describe()),
+                None => format!(" (posture-opt {:+.0} %)", 100.0 * b.change),
+            }
+        );
+    }
+    if let Some(Ok(l)) = &a.lifting {
+        for r in &l.lifts {
+            let _ = writeln!(
+                o,
+                "NIOSH lift '{}': RWL {:.1} kg, lifting index {}",
+                r.name,
+                r.rwl_kg,
+                r.lifting_index
+                    .map(|x| format!("{x:.2}"))
+                    .unwrap_or("-".into())
+            );
+        }
+        if let Some(c) = &l.composite {
+            if let Some(cli) = c.cli {
+                let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
+            }
+        }
+    }
+    o.push_str(&rest_summary(&a.rest));
+    o
+}

@@ -1,0 +1,578 @@
+//! Layout comparison: the same work planned on several workstation layouts, side by side and
+//! ranked, with the ranking's robustness across the fatigue parameters' ranges.
+//!
+//! **Ranking** (best first, [`RANKING_RULE`]): a layout the worker can do (every target reached,
+//! no collision, balance kept) beats one they cannot; then no load above a group's strength;
+//! then no exhaustion within the task (among exhausted layouts, later is better); then the longer
+//! time to exhaustion at the task's pace; then the higher lowest capacity at any time; then the
+//! lower fatigue index per hour of simulated work; then the lower worst RULA.
+//!
+//! **Robustness**: every layout's plan is replayed under the nine parameter variants of
+//! [`crate::assess::uncertainty`]; the ranking is redone per variant and the best layout's wins
+//! against each other layout are counted ("B beats A for 9 of 9 parameter variants").
+//!
+//! **Shards**: [`shard_indices`] splits the layouts deterministically (layout `j` goes to shard
+//! `j mod n`); each shard's [`LayoutOutcome`]s merge with [`Comparison::from_outcomes`] into the
+//! same table and document as one run.
+
+use super::shard::Shard;
+use crate::assess::{assess, Assessment};
+use crate::plan::result::Exhaustion;
+use crate::plan::{plan_task_with, Plan, PlanError, PlanOptions, Task};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::cmp::Ordering;
+use std::fmt::Write;
+
+/// One parameter variant's figures for a layout (what the ranking needs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct VariantFigures {
+    pub variant: String,
+    pub exhausted_in_task: bool,
+    pub minutes_to_exhaustion: Option<f64>,
+    pub lowest_capacity: f64,
+    pub rest_needed_s: Option<f64>,
+}
+
+/// One layout's outcome: every number has one meaning, as in `plan`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LayoutOutcome {
+    /// Position in the list of layouts given (shards keep it, for a deterministic merge).
+    pub index: usize,
+    /// 1 = best.
+    pub rank: usize,
+    pub file: String,
+    pub task: String,
+    /// The worker can do it: every target reached, no collision, balance kept.
+    pub feasible: bool,
+    /// What makes it infeasible, in words.
+    pub problems: Vec<String>,
+    /// Smallest clearance of any planned posture to an obstacle or the body itself \[m\], and what.
+    pub min_clearance_m: f64,
+    pub closest: Option<String>,
+    /// Smallest balance margin of any phase \[m\].
+    pub min_balance_margin_m: Option<f64>,
+    pub planned_duration_s: f64,
+    pub simulated_duration_s: f64,
+    pub total_u_min: f64,
+    /// Total U per hour of simulated work \[min/h\].
+    pub u_per_hour_min: f64,
+    pub worst_group: String,
+    pub worst_u_min: f64,
+    /// Lowest capacity at any time of the task, whose, and when.
+    pub lowest_capacity: f64,
+    pub lowest_capacity_group: String,
+    pub lowest_capacity_t_s: f64,
+    pub exhaustion: Option<Exhaustion>,
+    /// Minutes until a group gives out at this pace (`None`: never within a week).
+    pub minutes_to_exhaustion: Option<f64>,
+    /// Largest share of a rested muscle's endurance one hold uses.
+    pub endurance_share: f64,
+    pub rula_max: Option<i32>,
+    pub reba_max: Option<u8>,
+    pub back_compression_max_n: Option<f64>,
+    pub capable_women: f64,
+    pub capable_men: f64,
+    pub current_rest_s: f64,
+    /// Rest per cycle the model needs to keep every capacity above the floor.
+    pub rest_needed_s: Option<f64>,
+    pub rest_note: String,
+    /// The same figures under each parameter variant (empty without a named parameter set).
+    pub variants: Vec<VariantFigures>,
+}
+
+/// How robust the winner is against one other layout.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Robustness {
+    pub other: String,
+    /// Parameter variants in which the best layout ranks above `other`.
+    pub wins: usize,
+    pub variants: usize,
+}
+
+/// The comparison document (`posture-opt compare --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Comparison {
+    pub adaptive: bool,
+    pub fatigue_only: bool,
+    pub capacity_floor: f64,
+    pub ranking_rule: String,
+    /// Ranked, best first.
+    pub layouts: Vec<LayoutOutcome>,
+    /// The best layout against each other one, across the parameter variants.
+    pub robustness: Vec<Robustness>,
+    /// Findings in plain words.
+    pub findings: Vec<String>,
+}
+
+/// A shard's result: the outcomes of its layouts (`posture-opt compare --shard i/n --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CompareShard {
+    pub kind: String,
+    pub shard: String,
+    pub adaptive: bool,
+    pub fatigue_only: bool,
+    pub capacity_floor: f64,
+    pub layouts_total: usize,
+    pub outcomes: Vec<LayoutOutcome>,
+}
+
+pub const SHARD_KIND: &str = "posture-opt compare shard";
+
+pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
+
+/// A planned layout: its plan and assessment (for reports).
+pub struct Planned {
+    pub plan: Plan,
+    pub assessment: Assessment,
+}
+
+/// The outcome of one planned layout.
+pub fn outcome(index: usize, file: &str, task: &Task, plan: &Plan, a: &Assessment) -> LayoutOutcome {
+    let s = &plan.summary;
+    let mut problems = Vec::new();
+    let mut min_clearance = f64::INFINITY;
+    let mut closest = None;
+    let mut min_margin: Option<f64> = None;
+    for p in &s.phases {
+        if !p.reachable {
+            problems.push(match &p.target_inside {
+                Some(o) => format!("'{}': the target is inside '{o}'", p.phase),
+                None => format!("'{}': out of reach by {:.0} mm", p.phase, 1000.0 * p.hand_error_m),
+            });
+        }
+        if p.min_clearance_m < 0.0 {
+            problems.push(format!(
+                "'{}': {:.0} mm into {}",
+                p.phase,
+                -1000.0 * p.min_clearance_m,
+                p.closest.as_deref().unwrap_or("an obstacle")
+            ));
+        }
+        if let Some(m) = p.balance_margin_m {
+            if m < 0.0 {
+                problems.push(format!("'{}': off balance ({:.0} mm outside the feet)", p.phase, -1000.0 * m));
+            }
+            min_margin = Some(min_margin.map_or(m, |x: f64| x.min(m)));
+        }
+        if p.min_clearance_m < min_clearance {
+            min_clearance = p.min_clearance_m;
+            closest = p.closest.clone();
+        }
+    }
+    let group = |id: &str| {
+        task.half_joints
+            .iter()
+            .find(|h| h.id == id)
+            .map(|h| h.group.clone())
+            .unwrap_or_else(|| id.to_string())
+    };
+    let variants = a
+        .uncertainty
+        .as_ref()
+        .map(|u| {
+            u.outcomes
+                .iter()
+                .map(|o| VariantFigures {
+                    variant: o.variant.to_string(),
+                    exhausted_in_task: o.exhausted_in_task,
+                    minutes_to_exhaustion: o.minutes_to_exhaustion,
+                    lowest_capacity: o.lowest_capacity,
+                    rest_needed_s: o.rest_needed_s,
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    LayoutOutcome {
+        index,
+        rank: 0,
+        file: file.to_string(),
+        task: plan.task.clone(),
+        feasible: problems.is_empty(),
+        problems,
+        min_clearance_m: if min_clearance.is_finite() { min_clearance } else { 0.0 },
+        closest,
+        min_balance_margin_m: min_margin,
+        planned_duration_s: s.planned_duration_s,
+        simulated_duration_s: s.duration_s,
+        total_u_min: s.total_u,
+        u_per_hour_min: if s.duration_s > 0.0 { s.total_u * 3600.0 / s.duration_s } else { 0.0 },
+        worst_group: group(&s.worst_half_joint),
+        worst_u_min: s.worst_u,
+        lowest_capacity: s.lowest_capacity,
+        lowest_capacity_group: group(&s.lowest_capacity_half_joint),
+        lowest_capacity_t_s: s.lowest_capacity_t_s,
+        exhaustion: s.exhaustion.clone(),
+        minutes_to_exhaustion: a.meaning.minutes_to_exhaustion,
+        endurance_share: a.meaning.endurance_share,
+        rula_max: a.rula_max,
+        reba_max: a.reba_max,
+        back_compression_max_n: a.back_compression_max_n,
+        capable_women: a.capable_women,
+        capable_men: a.capable_men,
+        current_rest_s: a.rest.current_rest_s,
+        rest_needed_s: a.rest.model.rest_s_per_cycle,
+        rest_note: a.rest.model.note.clone(),
+        variants,
+    }
+}
+
+/// The figures the ranking compares.
+struct Key {
+    feasible: bool,
+    problems: usize,
+    exceeds: bool,
+    exhausted_at_s: f64,
+    minutes_to_exhaustion: f64,
+    lowest_capacity: f64,
+    u_per_hour: f64,
+    rula: i32,
+}
+
+fn key(o: &LayoutOutcome, variant: Option<usize>) -> Key {
+    let v = variant.and_then(|i| o.variants.get(i));
+    let exhausted_at_s = match v {
+        Some(v) if v.exhausted_in_task => o.exhaustion.as_ref().map_or(0.0, |e| e.t_s),
+        Some(_) => f64::INFINITY,
+        None => o.exhaustion.as_ref().map_or(f64::INFINITY, |e| e.t_s),
+    };
+    Key {
+        feasible: o.feasible,
+        problems: o.problems.len(),
+        exceeds: o.exhaustion.as_ref().is_some_and(|e| e.exceeds_strength),
+        exhausted_at_s,
+        minutes_to_exhaustion: v
+            .map_or(o.minutes_to_exhaustion, |v| v.minutes_to_exhaustion)
+            .unwrap_or(f64::INFINITY),
+        lowest_capacity: v.map_or(o.lowest_capacity, |v| v.lowest_capacity),
+        u_per_hour: o.u_per_hour_min,
+        rula: o.rula_max.unwrap_or(0),
+    }
+}
+
+fn order_keys(a: &Key, b: &Key) -> Ordering {
+    b.feasible
+        .cmp(&a.feasible)
+        .then(a.problems.cmp(&b.problems))
+        .then(a.exceeds.cmp(&b.exceeds))
+        .then(b.exhausted_at_s.total_cmp(&a.exhausted_at_s))
+        .then(b.minutes_to_exhaustion.total_cmp(&a.minutes_to_exhaustion))
+        .then(b.lowest_capacity.total_cmp(&a.lowest_capacity))
+        .then(a.u_per_hour.total_cmp(&b.u_per_hour))
+        .then(a.rula.cmp(&b.rula))
+}
+
+/// Orders two outcomes by [`RANKING_RULE`] (the set's values; `variant`: under that variant).
+pub fn rank_order(a: &LayoutOutcome, b: &LayoutOutcome, variant: Option<usize>) -> Ordering {
+    order_keys(&key(a, variant), &key(b, variant)).then(a.index.cmp(&b.index))
+}
+
+impl Comparison {
+    /// Ranks outcomes (from one run or merged shards) into the comparison document.
+    pub fn from_outcomes(mut layouts: Vec<LayoutOutcome>, adaptive: bool, fatigue_only: bool, floor: f64) -> Self {
+        layouts.sort_by_key(|o| o.index);
+        layouts.sort_by(|a, b| rank_order(a, b, None));
+        for (i, o) in layouts.iter_mut().enumerate() {
+            o.rank = i + 1;
+        }
+        let n_var = layouts.iter().map(|o| o.variants.len()).min().unwrap_or(0);
+        let robustness = match layouts.split_first() {
+            Some((best, rest)) if n_var > 0 => rest
+                .iter()
+                .map(|o| Robustness {
+                    other: o.file.clone(),
+                    wins: (0..n_var)
+                        .filter(|&v| rank_order(best, o, Some(v)) == Ordering::Less)
+                        .count(),
+                    variants: n_var,
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        let findings = findings(&layouts, &robustness);
+        Comparison {
+            adaptive,
+            fatigue_only,
+            capacity_floor: floor,
+            ranking_rule: RANKING_RULE.to_string(),
+            layouts,
+            robustness,
+            findings,
+        }
+    }
+}
+
+fn findings(layouts: &[LayoutOutcome], robustness: &[Robustness]) -> Vec<String> {
+    let mut f = Vec::new();
+    let Some(best) = layouts.first() else {
+        return f;
+    };
+    f.push(format!("best layout: {} ({})", best.file, verdict(best)));
+    for o in &layouts[1..] {
+        let mut s = format!("{}: {}", o.file, verdict(o));
+        if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
+            let change = best.worst_u_min / o.worst_u_min - 1.0;
+            let _ = write!(
+                s,
+                "; {} changes the {}' fatigue by {:+.0} %",
+                best.file,
+                best.worst_group,
+                100.0 * change
+            );
+        }
+        f.push(s);
+    }
+    for r in robustness {
+        f.push(format!(
+            "{} ranks above {} for {} of {} parameter variants",
+            best.file, r.other, r.wins, r.variants
+        ));
+    }
+    if layouts.iter().any(|o| !o.feasible) && !best.feasible {
+        f.push("no layout is feasible for this worker: see the problems listed".into());
+    }
+    f
+}
+
+/// One layout's verdict in words.
+pub fn verdict(o: &LayoutOutcome) -> String {
+    if !o.feasible {
+        return format!("cannot be done: {}", o.problems.join("; "));
+    }
+    match &o.exhaustion {
+        Some(e) => e.describe(),
+        None => match o.minutes_to_exhaustion {
+            Some(m) => format!(
+                "no exhaustion in the task; kept up, the first group gives out after {:.1} h; lowest capacity {:.0} % ({})",
+                m / 60.0,
+                100.0 * o.lowest_capacity,
+                o.lowest_capacity_group
+            ),
+            None => format!(
+                "sustainable at this pace; lowest capacity {:.0} % ({})",
+                100.0 * o.lowest_capacity,
+                o.lowest_capacity_group
+            ),
+        },
+    }
+}
+
+/// Plans and assesses layouts `indices` of `tasks` (in parallel).
+pub fn plan_layouts(
+    files: &[String],
+    tasks: &[Task],
+    indices: &[usize],
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<Vec<(LayoutOutcome, Planned)>, PlanError> {
+    indices
+        .par_iter()
+        .map(|&i| {
+            let plan = plan_task_with(&tasks[i], opts)?;
+            let assessment = assess(&tasks[i], &plan, floor);
+            Ok((
+                outcome(i, &files[i], &tasks[i], &plan, &assessment),
+                Planned { plan, assessment },
+            ))
+        })
+        .collect()
+}
+
+/// Plans every layout (in parallel) and ranks them. `files[i]` names `tasks[i]`.
+pub fn compare(
+    files: &[String],
+    tasks: &[Task],
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<(Comparison, Vec<Planned>), PlanError> {
+    let all: Vec<usize> = (0..tasks.len()).collect();
+    let results = plan_layouts(files, tasks, &all, opts, floor)?;
+    let (outcomes, planned): (Vec<_>, Vec<_>) = results.into_iter().unzip();
+    let c = Comparison::from_outcomes(outcomes, opts.adapt, opts.fatigue_only, floor);
+    // planned in the ranking's order
+    let mut planned: Vec<Option<Planned>> = planned.into_iter().map(Some).collect();
+    let ordered = c
+        .layouts
+        .iter()
+        .filter_map(|o| planned.get_mut(o.index).and_then(Option::take))
+        .collect();
+    Ok((c, ordered))
+}
+
+/// Runs one shard of a comparison.
+pub fn compare_shard(
+    files: &[String],
+    tasks: &[Task],
+    shard: Shard,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<CompareShard, PlanError> {
+    let idx = shard.indices(tasks.len());
+    let results = plan_layouts(files, tasks, &idx, opts, floor)?;
+    Ok(CompareShard {
+        kind: SHARD_KIND.into(),
+        shard: shard.to_string(),
+        adaptive: opts.adapt,
+        fatigue_only: opts.fatigue_only,
+        capacity_floor: floor,
+        layouts_total: tasks.len(),
+        outcomes: results.into_iter().map(|r| r.0).collect(),
+    })
+}
+
+/// Why shard results do not merge.
+#[derive(Debug, thiserror::Error)]
+pub enum MergeError {
+    #[error("{file}: not a compare shard (kind '{kind}')")]
+    Kind { file: String, kind: String },
+    #[error("{file}: made with other options than {first} (adaptive, fatigue-only, capacity floor and layout count must agree)")]
+    Options { file: String, first: String },
+    #[error("layout {index} appears in two shards ({file})")]
+    Twice { index: usize, file: String },
+    #[error("the shards cover {got} of {total} layouts: missing {missing:?}")]
+    Missing {
+        got: usize,
+        total: usize,
+        missing: Vec<usize>,
+    },
+}
+
+/// Merges shard results (`names` name them in messages) into one comparison.
+pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError> {
+    let Some((first_name, first)) = shards.first() else {
+        return Err(MergeError::Missing {
+            got: 0,
+            total: 0,
+            missing: Vec::new(),
+        });
+    };
+    let mut seen = vec![false; first.layouts_total];
+    let mut outcomes = Vec::new();
+    for (name, s) in shards {
+        if s.kind != SHARD_KIND {
+            return Err(MergeError::Kind {
+                file: name.clone(),
+                kind: s.kind.clone(),
+            });
+        }
+        if s.adaptive != first.adaptive
+            || s.fatigue_only != first.fatigue_only
+            || s.capacity_floor != first.capacity_floor
+            || s.layouts_total != first.layouts_total
+        {
+            return Err(MergeError::Options {
+                file: name.clone(),
+                first: first_name.clone(),
+            });
+        }
+        for o in &s.outcomes {
+            match seen.get_mut(o.index) {
+                Some(x) if !*x => *x = true,
+                _ => {
+                    return Err(MergeError::Twice {
+                        index: o.index,
+                        file: name.clone(),
+                    })
+                }
+            }
+            outcomes.push(o.clone());
+        }
+    }
+    let missing: Vec<usize> = (0..seen.len()).filter(|&i| !seen[i]).collect();
+    if !missing.is_empty() {
+        return Err(MergeError::Missing {
+            got: seen.len() - missing.len(),
+            total: seen.len(),
+            missing,
+        });
+    }
+    Ok(Comparison::from_outcomes(
+        outcomes,
+        first.adaptive,
+        first.fatigue_only,
+        first.capacity_floor,
+    ))
+}
+
+fn opt_s(v: Option<f64>) -> String {
+    v.map_or("rest cannot help".into(), |x| format!("{x:.1} s"))
+}
+
+/// The comparison as a text table: one column per layout, best first.
+pub fn comparison_table(c: &Comparison) -> String {
+    let mut rows: Vec<(String, Vec<String>)> = Vec::new();
+    let mut row = |name: &str, f: &dyn Fn(&LayoutOutcome) -> String| {
+        rows.push((name.to_string(), c.layouts.iter().map(f).collect()));
+    };
+    row("rank", &|o| o.rank.to_string());
+    row("file", &|o| o.file.clone());
+    row("feasible", &|o| {
+        if o.feasible {
+            "yes".into()
+        } else {
+            format!("NO: {}", o.problems.join("; "))
+        }
+    });
+    row("exhaustion", &|o| match &o.exhaustion {
+        Some(e) => e.describe(),
+        None => "none".into(),
+    });
+    row("time to exhaustion at this pace", &|o| match o.minutes_to_exhaustion {
+        Some(m) => format!("{:.1} h", m / 60.0),
+        None => "never (sustainable)".into(),
+    });
+    row("lowest capacity (any time)", &|o| {
+        format!("{:.0} % {}", 100.0 * o.lowest_capacity, o.lowest_capacity_group)
+    });
+    row("endurance used by one hold", &|o| format!("{:.0} %", 100.0 * o.endurance_share));
+    row("total U [min]", &|o| format!("{:.2}", o.total_u_min));
+    row("U per hour simulated [min]", &|o| format!("{:.2}", o.u_per_hour_min));
+    row("most fatigued group", &|o| format!("{} ({:.2} min)", o.worst_group, o.worst_u_min));
+    row("closest clearance", &|o| {
+        format!(
+            "{:.0} mm{}",
+            1000.0 * o.min_clearance_m,
+            o.closest.as_ref().map(|c| format!(" to {c}")).unwrap_or_default()
+        )
+    });
+    row("balance margin", &|o| {
+        o.min_balance_margin_m
+            .map_or("—".into(), |m| format!("{:.0} mm", 1000.0 * m))
+    });
+    row("worst RULA / REBA", &|o| {
+        format!(
+            "{} / {}",
+            o.rula_max.map_or("—".into(), |r| r.to_string()),
+            o.reba_max.map_or("—".into(), |r| r.to_string())
+        )
+    });
+    row("L5/S1 compression", &|o| {
+        o.back_compression_max_n
+            .map_or("—".into(), |n| format!("{n:.0} N"))
+    });
+    row("capable women / men", &|o| {
+        format!("{:.0} % / {:.0} %", 100.0 * o.capable_women, 100.0 * o.capable_men)
+    });
+    row("rest per cycle now", &|o| format!("{:.1} s", o.current_rest_s));
+    row(
+        &format!("rest needed (floor {:.2})", c.capacity_floor),
+        &|o| opt_s(o.rest_needed_s),
+    );
+    let w0 = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
+    let widths: Vec<usize> = (0..c.layouts.len())
+        .map(|i| rows.iter().map(|r| r.1[i].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut o = String::new();
+    for (name, cells) in &rows {
+        let _ = write!(o, "{name:<w0$}");
+        for (cell, w) in cells.iter().zip(&widths) {
+            let _ = write!(o, "  {cell:<w$}");
+        }
+        let _ = writeln!(o);
+    }
+    let _ = writeln!(o, "\nranking: {}", c.ranking_rule);
+    for f in &c.findings {
+        let _ = writeln!(o, "- {f}");
+    }
+    o
+}

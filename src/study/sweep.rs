@@ -1,0 +1,539 @@
+//! Populations: one task planned for many workers, to find who cannot do it and where.
+//!
+//! Each worker gets a body generated from their sex, stature and mass (the task's `robot` file,
+//! if any, is replaced: the sweep is about body size) and strength scaled to their percentile.
+//!
+//! * **Standard population**: 5th, 50th and 95th-percentile men and women, with stature, body
+//!   mass and strength all at that percentile (the "all small" / "all large" design cases; real
+//!   people mix percentiles). Stature: US adults 19–65, Pheasant's *Bodyspace* as tabulated by
+//!   the CityU Online Anthropometry pages (men 1640 / 1755 / 1870 mm, SD 71; women 1520 / 1625 /
+//!   1730 mm, SD 64). Body mass: ASSUMPTION, rounded typical adult values (men 60 / 78 / 100 kg,
+//!   women 47 / 62 / 84 kg), not from a checked table.
+//! * **Sampled population** (`n`, `seed`): sex alternates; stature normal with the means and SDs
+//!   above; ln(mass) normal with the median and spread of the mass percentiles above and
+//!   correlation 0.45 with stature (ASSUMPTION); strength percentile uniform on [1, 99],
+//!   independent (ASSUMPTION). A SplitMix64 generator makes a seed reproduce the same sample on
+//!   every platform.
+//!
+//! A worker **cannot do the task** when a load exceeds a muscle group's strength, a group is
+//! exhausted within the task, a target is out of reach (hand error > 1 cm), a posture penetrates
+//! an obstacle (clearance < 0) or the worker would lose balance.
+//!
+//! **Share sustaining the shift**: for a sampled population, the share of workers who can do the
+//! whole task, with a 95 % Wilson score interval (Wilson 1927), overall and per sex.
+//!
+//! **Shards**: worker `j` belongs to shard `j mod n`; [`merge`] joins shard results into the
+//! document one run gives.
+
+use super::shard::Shard;
+use crate::assess::assess;
+use crate::body::strength::normal_quantile;
+use crate::body::{Sex, Worker};
+use crate::plan::result::Exhaustion;
+use crate::plan::{plan_task_with, PlanError, PlanOptions, Task, TaskError, TaskFile};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write;
+use std::path::Path;
+
+/// One member of a population.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Member {
+    pub label: String,
+    pub worker: Worker,
+}
+
+/// Stature mean and SD \[m\], mass 5th/50th/95th percentiles \[kg\] per sex.
+struct SexData {
+    stature_mean_m: f64,
+    stature_sd_m: f64,
+    mass_kg: [f64; 3],
+}
+
+const MEN: SexData = SexData {
+    stature_mean_m: 1.755,
+    stature_sd_m: 0.071,
+    mass_kg: [60.0, 78.0, 100.0],
+};
+const WOMEN: SexData = SexData {
+    stature_mean_m: 1.625,
+    stature_sd_m: 0.064,
+    mass_kg: [47.0, 62.0, 84.0],
+};
+const Z95: f64 = 1.644_853_626_951_472_2;
+/// Correlation of stature and ln(mass) in the sampled population (ASSUMPTION).
+const STATURE_MASS_CORRELATION: f64 = 0.45;
+
+fn data(sex: Sex) -> &'static SexData {
+    match sex {
+        Sex::Male => &MEN,
+        Sex::Female => &WOMEN,
+    }
+}
+
+/// 5th, 50th and 95th-percentile women and men.
+pub fn standard_population() -> Vec<Member> {
+    let mut v = Vec::with_capacity(6);
+    for (sex, name) in [(Sex::Female, "woman"), (Sex::Male, "man")] {
+        let d = data(sex);
+        for (i, (pct, z)) in [(5.0, -Z95), (50.0, 0.0), (95.0, Z95)].iter().enumerate() {
+            v.push(Member {
+                label: format!("P{pct:.0} {name}"),
+                worker: Worker {
+                    sex,
+                    stature_m: d.stature_mean_m + z * d.stature_sd_m,
+                    mass_kg: d.mass_kg[i],
+                    strength_percentile: *pct,
+                },
+            });
+        }
+    }
+    v
+}
+
+/// SplitMix64 (Steele, Lea & Flood 2014): a tiny, portable, reproducible generator.
+struct SplitMix64(u64);
+impl SplitMix64 {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in (0, 1).
+    fn uniform(&mut self) -> f64 {
+        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+    fn normal(&mut self) -> f64 {
+        normal_quantile(self.uniform())
+    }
+}
+
+/// `n` sampled workers (see the module docs); the same seed gives the same sample.
+pub fn sampled_population(n: usize, seed: u64) -> Vec<Member> {
+    let mut rng = SplitMix64(seed);
+    (0..n)
+        .map(|i| {
+            let sex = if i % 2 == 0 { Sex::Female } else { Sex::Male };
+            let d = data(sex);
+            let z1 = rng.normal();
+            let z2 = rng.normal();
+            let r = STATURE_MASS_CORRELATION;
+            let zm = r * z1 + (1.0 - r * r).sqrt() * z2;
+            let ln_sigma = (d.mass_kg[2] / d.mass_kg[0]).ln() / (2.0 * Z95);
+            let worker = Worker {
+                sex,
+                stature_m: (d.stature_mean_m + z1 * d.stature_sd_m).clamp(1.3, 2.2),
+                mass_kg: (d.mass_kg[1] * (zm * ln_sigma).exp()).clamp(35.0, 180.0),
+                strength_percentile: 1.0 + 98.0 * rng.uniform(),
+            };
+            Member {
+                label: format!("#{i:03}"),
+                worker,
+            }
+        })
+        .collect()
+}
+
+/// Why a worker cannot do the task.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Problem {
+    /// A load above the group's strength from the first instant.
+    ExceedsStrength { group: String, phase: String, load: f64 },
+    Exhaustion { t_s: f64, group: String, phase: String, load: f64 },
+    OutOfReach { phase: String, hand_error_m: f64 },
+    Collision { phase: String, clearance_m: f64, with: Option<String> },
+    OffBalance { phase: String, margin_m: f64 },
+}
+
+/// One worker's outcome.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WorkerOutcome {
+    pub index: usize,
+    pub label: String,
+    pub worker: Worker,
+    pub can_do: bool,
+    pub problems: Vec<Problem>,
+    /// Fatigue index summed over groups \[min\], over the simulated time: the simulation stops at
+    /// an exhaustion, so an exhausted worker's U covers only the time until then.
+    pub total_u_min: f64,
+    pub simulated_s: f64,
+    pub worst_group: String,
+    /// Lowest capacity at any time of the task, and whose.
+    pub lowest_capacity: f64,
+    pub lowest_capacity_group: String,
+    pub minutes_to_exhaustion: Option<f64>,
+    pub exhaustion: Option<Exhaustion>,
+    pub rula_max: Option<i32>,
+    pub reba_max: Option<u8>,
+    pub back_compression_max_n: Option<f64>,
+    /// Rest per cycle the model needs to keep every capacity above the floor (`None`: rest
+    /// cannot help).
+    pub rest_needed_s: Option<f64>,
+    /// Parameter variants (of 9) under which a group is exhausted within the task.
+    pub exhausted_in_variants: Option<usize>,
+}
+
+/// A share with its 95 % confidence interval.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Share {
+    pub share: f64,
+    pub low: f64,
+    pub high: f64,
+    pub of: usize,
+}
+
+/// The 95 % Wilson score interval for `k` successes of `n`.
+pub fn wilson(k: usize, n: usize) -> Share {
+    if n == 0 {
+        return Share {
+            share: 0.0,
+            low: 0.0,
+            high: 1.0,
+            of: 0,
+        };
+    }
+    let z = 1.959_963_984_540_054;
+    let (nf, p) = (n as f64, k as f64 / n as f64);
+    let den = 1.0 + z * z / nf;
+    let centre = (p + z * z / (2.0 * nf)) / den;
+    let half = z * (p * (1.0 - p) / nf + z * z / (4.0 * nf * nf)).sqrt() / den;
+    Share {
+        share: p,
+        low: (centre - half).max(0.0),
+        high: (centre + half).min(1.0),
+        of: n,
+    }
+}
+
+/// The sweep document (`posture-opt sweep --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Sweep {
+    pub task: String,
+    pub population: String,
+    pub adaptive: bool,
+    pub capacity_floor: f64,
+    pub workers: Vec<WorkerOutcome>,
+    pub cannot_do: usize,
+    /// Sampled populations: the share who can do the whole task, overall, women, men.
+    pub sustain_all: Option<Share>,
+    pub sustain_women: Option<Share>,
+    pub sustain_men: Option<Share>,
+    pub note: String,
+}
+
+/// A shard's result (`posture-opt sweep --shard i/n --json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepShard {
+    pub kind: String,
+    pub shard: String,
+    pub task: String,
+    pub population: String,
+    pub sampled: bool,
+    pub adaptive: bool,
+    pub capacity_floor: f64,
+    pub workers_total: usize,
+    pub workers: Vec<WorkerOutcome>,
+}
+
+pub const SHARD_KIND: &str = "posture-opt sweep shard";
+
+/// Why a sweep failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    #[error("worker {label}: {source}")]
+    Task { label: String, source: TaskError },
+    #[error("worker {label}: {source}")]
+    Plan { label: String, source: PlanError },
+    #[error("{file}: {problem}")]
+    Merge { file: String, problem: String },
+}
+
+/// What the sweep says about U.
+pub const NOTE: &str = "U is summed over the simulated time: a worker who is exhausted stops there, so their U can be smaller than a stronger worker's who works the whole task";
+
+/// Plans and assesses the task for one member.
+pub fn one(
+    file: &TaskFile,
+    path: &Path,
+    index: usize,
+    m: &Member,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<WorkerOutcome, SweepError> {
+    let mut f = file.clone();
+    f.worker = m.worker;
+    f.robot = None;
+    let task = Task::from_task_file(f, path).map_err(|source| SweepError::Task {
+        label: m.label.clone(),
+        source,
+    })?;
+    let plan = plan_task_with(&task, opts).map_err(|source| SweepError::Plan {
+        label: m.label.clone(),
+        source,
+    })?;
+    let a = assess(&task, &plan, floor);
+    let s = &plan.summary;
+    let mut problems = Vec::new();
+    if let Some(e) = &s.exhaustion {
+        problems.push(if e.exceeds_strength {
+            Problem::ExceedsStrength {
+                group: e.group.clone(),
+                phase: e.phase.clone(),
+                load: e.load,
+            }
+        } else {
+            Problem::Exhaustion {
+                t_s: e.t_s,
+                group: e.group.clone(),
+                phase: e.phase.clone(),
+                load: e.load,
+            }
+        });
+    }
+    for p in &s.phases {
+        if !p.reachable {
+            problems.push(Problem::OutOfReach {
+                phase: p.phase.clone(),
+                hand_error_m: p.hand_error_m,
+            });
+        }
+        if p.min_clearance_m < 0.0 {
+            problems.push(Problem::Collision {
+                phase: p.phase.clone(),
+                clearance_m: p.min_clearance_m,
+                with: p.closest.clone(),
+            });
+        }
+        if let Some(mg) = p.balance_margin_m.filter(|m| *m < 0.0) {
+            problems.push(Problem::OffBalance {
+                phase: p.phase.clone(),
+                margin_m: mg,
+            });
+        }
+    }
+    let group = |id: &str| {
+        task.half_joints
+            .iter()
+            .find(|h| h.id == id)
+            .map(|h| h.group.clone())
+            .unwrap_or_else(|| id.to_string())
+    };
+    Ok(WorkerOutcome {
+        index,
+        label: m.label.clone(),
+        worker: m.worker,
+        can_do: problems.is_empty(),
+        problems,
+        total_u_min: s.total_u,
+        simulated_s: s.duration_s,
+        worst_group: group(&s.worst_half_joint),
+        lowest_capacity: s.lowest_capacity,
+        lowest_capacity_group: group(&s.lowest_capacity_half_joint),
+        minutes_to_exhaustion: a.meaning.minutes_to_exhaustion,
+        exhaustion: s.exhaustion.clone(),
+        rula_max: a.rula_max,
+        reba_max: a.reba_max,
+        back_compression_max_n: a.back_compression_max_n,
+        rest_needed_s: a.rest.model.rest_s_per_cycle,
+        exhausted_in_variants: a.uncertainty.as_ref().map(|u| u.exhausted_in),
+    })
+}
+
+impl Sweep {
+    /// The sweep document from the workers' outcomes (one run or merged shards).
+    pub fn from_outcomes(
+        task: &str,
+        population: &str,
+        sampled: bool,
+        adaptive: bool,
+        floor: f64,
+        mut workers: Vec<WorkerOutcome>,
+    ) -> Self {
+        workers.sort_by_key(|w| w.index);
+        let share = |sex: Option<Sex>| {
+            let of: Vec<&WorkerOutcome> = workers
+                .iter()
+                .filter(|w| sex.is_none_or(|s| w.worker.sex == s))
+                .collect();
+            wilson(of.iter().filter(|w| w.can_do).count(), of.len())
+        };
+        Sweep {
+            task: task.to_string(),
+            population: population.to_string(),
+            adaptive,
+            capacity_floor: floor,
+            cannot_do: workers.iter().filter(|w| !w.can_do).count(),
+            sustain_all: sampled.then(|| share(None)),
+            sustain_women: sampled.then(|| share(Some(Sex::Female))),
+            sustain_men: sampled.then(|| share(Some(Sex::Male))),
+            note: NOTE.into(),
+            workers,
+        }
+    }
+}
+
+/// Plans `file` (read from `path`) for the members of `shard`, in parallel; `on_done` is called
+/// once per finished worker (from any thread) with its outcome, e.g. to stream it or advance a
+/// progress bar.
+pub fn sweep_members(
+    file: &TaskFile,
+    path: &Path,
+    members: &[Member],
+    shard: Shard,
+    opts: PlanOptions,
+    floor: f64,
+    on_done: &(dyn Fn(&WorkerOutcome) + Sync),
+) -> Result<Vec<WorkerOutcome>, SweepError> {
+    shard
+        .indices(members.len())
+        .par_iter()
+        .map(|&i| {
+            let r = one(file, path, i, &members[i], opts, floor)?;
+            on_done(&r);
+            Ok(r)
+        })
+        .collect()
+}
+
+/// Merges shard results (name, shard) into one sweep.
+pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
+    let bad = |file: &str, problem: String| SweepError::Merge {
+        file: file.to_string(),
+        problem,
+    };
+    let Some((_, first)) = shards.first() else {
+        return Err(bad("(none)", "no shard results given".into()));
+    };
+    let mut seen = vec![false; first.workers_total];
+    let mut workers = Vec::new();
+    for (name, s) in shards {
+        if s.kind != SHARD_KIND {
+            return Err(bad(name, format!("not a sweep shard (kind '{}')", s.kind)));
+        }
+        if s.task != first.task
+            || s.population != first.population
+            || s.adaptive != first.adaptive
+            || s.capacity_floor != first.capacity_floor
+            || s.workers_total != first.workers_total
+        {
+            return Err(bad(name, "made for another task, population or options than the first shard".into()));
+        }
+        for w in &s.workers {
+            match seen.get_mut(w.index) {
+                Some(x) if !*x => *x = true,
+                _ => return Err(bad(name, format!("worker {} appears twice or is out of range", w.index))),
+            }
+            workers.push(w.clone());
+        }
+    }
+    let missing: Vec<usize> = (0..seen.len()).filter(|&i| !seen[i]).collect();
+    if !missing.is_empty() {
+        return Err(bad(
+            "(all shards)",
+            format!("{} of {} workers are missing, e.g. {:?}", missing.len(), seen.len(), &missing[..missing.len().min(10)]),
+        ));
+    }
+    Ok(Sweep::from_outcomes(
+        &first.task,
+        &first.population,
+        first.sampled,
+        first.adaptive,
+        first.capacity_floor,
+        workers,
+    ))
+}
+
+/// One line describing a problem: what, where and when.
+pub fn problem_text(p: &Problem) -> String {
+    match p {
+        Problem::ExceedsStrength { group, phase, load } => {
+            format!("{group} exceeds strength ({:.0} % MVC) in '{phase}'", 100.0 * load)
+        }
+        Problem::Exhaustion { t_s, group, phase, load } => format!(
+            "{group} exhausted at {:.1} min in '{phase}' ({:.0} % MVC)",
+            t_s / 60.0,
+            100.0 * load
+        ),
+        Problem::OutOfReach { phase, hand_error_m } => {
+            format!("'{phase}' out of reach by {:.0} mm", 1000.0 * hand_error_m)
+        }
+        Problem::Collision { phase, clearance_m, with } => format!(
+            "'{phase}' collides ({:.0} mm into {})",
+            -1000.0 * clearance_m,
+            with.as_deref().unwrap_or("an obstacle")
+        ),
+        Problem::OffBalance { phase, margin_m } => format!(
+            "'{phase}' off balance ({:.0} mm outside the feet)",
+            -1000.0 * margin_m
+        ),
+    }
+}
+
+fn share_text(name: &str, s: &Option<Share>) -> String {
+    match s {
+        Some(s) => format!(
+            "{name}: {:.0} % can do the whole task (95 % CI {:.0}–{:.0} %, n = {})",
+            100.0 * s.share,
+            100.0 * s.low,
+            100.0 * s.high,
+            s.of
+        ),
+        None => String::new(),
+    }
+}
+
+/// The sweep as a text table.
+pub fn sweep_table(s: &Sweep) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "{} — {} workers ({}), {} plans, capacity floor {:.2}\n",
+        s.task,
+        s.workers.len(),
+        s.population,
+        if s.adaptive { "adaptive" } else { "held" },
+        s.capacity_floor
+    );
+    let _ = writeln!(
+        o,
+        "{:<12} {:>6} {:>8} {:>6} {:>7} {:>9} {:>6} {:>10}  verdict",
+        "worker", "sex", "stature", "mass", "str.pct", "U [min]", "lowC", "rest/cycle"
+    );
+    for w in &s.workers {
+        let _ = writeln!(
+            o,
+            "{:<12} {:>6} {:>7.3}m {:>4.0}kg {:>7.0} {:>9.2} {:>6.2} {:>10}  {}",
+            w.label,
+            w.worker.sex.name(),
+            w.worker.stature_m,
+            w.worker.mass_kg,
+            w.worker.strength_percentile,
+            w.total_u_min,
+            w.lowest_capacity,
+            w.rest_needed_s.map_or("none helps".into(), |r| format!("{r:.1} s")),
+            if w.problems.is_empty() {
+                match w.minutes_to_exhaustion {
+                    Some(m) => format!("can do it (kept up, exhausted after {:.1} h)", m / 60.0),
+                    None => "can do it (sustainable)".to_string(),
+                }
+            } else {
+                format!(
+                    "CANNOT: {}",
+                    w.problems.iter().map(problem_text).collect::<Vec<_>>().join("; ")
+                )
+            }
+        );
+    }
+    let _ = writeln!(o, "\n{} of {} workers cannot do the task", s.cannot_do, s.workers.len());
+    for (name, sh) in [("all", &s.sustain_all), ("women", &s.sustain_women), ("men", &s.sustain_men)] {
+        let t = share_text(name, sh);
+        if !t.is_empty() {
+            let _ = writeln!(o, "{t}");
+        }
+    }
+    let _ = writeln!(o, "note: {}", s.note);
+    o
+}
