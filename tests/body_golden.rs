@@ -1,73 +1,278 @@
-//! Statics against golden values from Pinocchio 4.1 (tests/data/pinocchio_golden.py).
+//! Whole-body statics against Pinocchio 4.1, an independent rigid-body library.
+//!
+//! The golden values in `tests/data/pinocchio/*.json` come from `tests/data/pinocchio_golden.py`
+//! (run it from the repository root to regenerate them): inverse dynamics at rest
+//! (`rnea(q, 0, 0, fext)`) with gravity and four external loads (hand loads and arbitrary foot
+//! forces at points of the foot links, chosen in the script, not posture-opt's ground reaction),
+//! the gravity torques and their derivative, every link frame's placement, the load points'
+//! positions and Jacobians, and the centre of mass with its Jacobian. Robots: the shipped worker
+//! (its floating pelvis is the URDF's prismatic + revolute pelvis joints), the two-link arm, the
+//! branched tree and `geometry.urdf` (fixed joints mid-chain, continuous joints, tilted and
+//! non-unit axes, rotated origins).
+//!
+//! Pinocchio's inverse dynamics at rest is the torque the joints must produce to hold the posture
+//! — posture-opt's holding torque, same sign (see `posture_opt::body::statics`). Joints are
+//! matched by name. Pinocchio leaves a fixed root link's mass out of its centre of mass; the
+//! script adds it back (`com_m`), since posture-opt counts every link.
 
-use nalgebra::Vector3;
-use posture_opt::body::{holding_torques, BodyModel, StaticsData, GRAVITY_M_S2};
+use nalgebra::{Matrix3xX, Vector3};
+use posture_opt::body::{
+    apply_loads, forward_kinematics, holding_torque_derivative, holding_torques, mass_moments,
+    BodyModel, PointLoad, StaticsData, GRAVITY_M_S2,
+};
+use serde_json::Value;
 
-#[test]
-fn matches_pinocchio() {
-    let root = env!("CARGO_MANIFEST_DIR");
-    let golden: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(format!("{root}/tests/data/pinocchio_golden.json")).unwrap(),
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+fn golden(name: &str) -> Value {
+    let path = format!("{ROOT}/tests/data/pinocchio/{name}.json");
+    serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap()
+}
+
+fn v3(v: &Value) -> Vector3<f64> {
+    let a = v.as_array().expect("a 3-vector");
+    assert_eq!(a.len(), 3);
+    Vector3::new(
+        a[0].as_f64().unwrap(),
+        a[1].as_f64().unwrap(),
+        a[2].as_f64().unwrap(),
     )
-    .unwrap();
-    let cases = golden["cases"].as_array().unwrap();
-    assert_eq!(cases.len(), 5);
-    for case in cases {
-        let m = BodyModel::from_urdf_file(format!("{root}/{}", case["robot"].as_str().unwrap()))
-            .unwrap();
-        let hand = m.frame_link(case["frame"].as_str().unwrap()).unwrap();
-        let f: Vec<f64> = case["force_n"]
-            .as_array()
-            .unwrap()
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap()
+}
+
+/// `|a − b| ≤ tol` elementwise, with a message naming what is compared.
+fn close(a: f64, b: f64, tol: f64, what: &str) {
+    assert!(
+        (a - b).abs() <= tol,
+        "{what}: posture-opt {a:.15e}, Pinocchio {b:.15e}, difference {:.3e} > {tol:.1e}",
+        a - b
+    );
+}
+
+fn close3(a: &Vector3<f64>, b: &Vector3<f64>, tol: f64, what: &str) {
+    for k in 0..3 {
+        close(a[k], b[k], tol, &format!("{what}[{k}]"));
+    }
+}
+
+struct Case {
+    q: Vec<f64>,
+    loads: Vec<PointLoad>,
+}
+
+/// The posture (in posture-opt's q order, matched by joint name) and loads of a golden case.
+fn case(model: &BodyModel, c: &Value) -> Case {
+    let mut q = vec![f64::NAN; model.nq()];
+    for (name, v) in c["q_rad"].as_object().unwrap() {
+        q[model.q_index(name).unwrap()] = f(v);
+    }
+    assert!(q.iter().all(|x| x.is_finite()), "every joint has a value");
+    let loads = c["loads"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| PointLoad {
+            link: model.frame_link(l["link"].as_str().unwrap()).unwrap(),
+            point_in_link_m: v3(&l["point_in_link_m"]),
+            force_n: v3(&l["force_n"]),
+            moment_nm: v3(&l["moment_nm"]),
+        })
+        .collect();
+    Case { q, loads }
+}
+
+fn model_of(doc: &Value) -> BodyModel {
+    BodyModel::from_urdf_file(format!("{ROOT}/{}", doc["robot"].as_str().unwrap())).unwrap()
+}
+
+/// Joint torques (with loads, gravity alone), link placements, load points, centre of mass.
+fn check_robot(name: &str) {
+    let doc = golden(name);
+    let model = model_of(&doc);
+    let names: Vec<&str> = doc["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j.as_str().unwrap())
+        .collect();
+    assert_eq!(names.len(), model.nq(), "{name}: the same moving joints");
+    close(
+        model.total_mass_kg(),
+        f(&doc["total_mass_kg"]),
+        1e-12,
+        &format!("{name}: total mass"),
+    );
+    let g = v3(&doc["gravity_m_s2"]);
+    assert_eq!(g, GRAVITY_M_S2);
+    let cases = doc["cases"].as_array().unwrap();
+    assert!(!cases.is_empty());
+    for c in cases {
+        let cname = format!("{name}/{}", c["name"].as_str().unwrap());
+        let Case { q, loads } = case(&model, c);
+        let mut d = StaticsData::new(&model, loads.len());
+        forward_kinematics(&model, &mut d, &q);
+        mass_moments(&model, &mut d);
+        apply_loads(&model, &mut d, &loads, &g);
+
+        // torques, to ~1e-9 of the largest
+        let scale = names
             .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
-        let joints = case["joints"].as_object().unwrap();
-        assert_eq!(joints.len(), m.nq());
-        let mut q = vec![0.0; m.nq()];
-        for (name, j) in joints {
-            q[m.q_index(name).unwrap()] = j["q_rad"].as_f64().unwrap();
+            .map(|n| f(&c["tau_nm"][n]).abs())
+            .fold(1.0, f64::max);
+        let gscale = names
+            .iter()
+            .map(|n| f(&c["tau_gravity_nm"][n]).abs())
+            .fold(1.0, f64::max);
+        for n in &names {
+            let k = model.q_index(n).unwrap();
+            close(d.tau_nm[k], f(&c["tau_nm"][n]), 1e-9 * scale, &format!("{cname}: τ {n}"));
+            close(
+                d.tau_gravity_nm[k],
+                f(&c["tau_gravity_nm"][n]),
+                1e-9 * gscale,
+                &format!("{cname}: τ_gravity {n}"),
+            );
+            close(
+                d.tau_load_nm[k],
+                f(&c["tau_nm"][n]) - f(&c["tau_gravity_nm"][n]),
+                1e-9 * scale,
+                &format!("{cname}: τ_load {n}"),
+            );
         }
-        let mut d = StaticsData::new(&m);
-        holding_torques(
-            &m,
-            &mut d,
-            &q,
-            hand,
-            &Vector3::new(f[0], f[1], f[2]),
-            &GRAVITY_M_S2,
-        );
-        let p: Vec<f64> = case["position_m"]
-            .as_array()
-            .unwrap()
+
+        // every link frame
+        for (link, p) in c["links"].as_object().unwrap() {
+            let l = model.frame_link(link).unwrap();
+            let (rot, pos) = d.link_pose(&model, l);
+            close3(&pos, &v3(&p["position_m"]), 1e-12, &format!("{cname}: {link} position"));
+            let r = p["rotation"].as_array().unwrap();
+            for i in 0..3 {
+                for j in 0..3 {
+                    close(rot[(i, j)], f(&r[i][j]), 1e-12, &format!("{cname}: {link} R[{i}][{j}]"));
+                }
+            }
+        }
+
+        // load points and their Jacobians
+        let mut jp = Matrix3xX::zeros(model.nq());
+        let mut jw = Matrix3xX::zeros(model.nq());
+        for (e, l) in c["loads"].as_array().unwrap().iter().enumerate() {
+            let p = d.link_point(&model, loads[e].link, &loads[e].point_in_link_m);
+            close3(&p, &v3(&l["point_world_m"]), 1e-12, &format!("{cname}: load {e} point"));
+            close3(&d.load_point_w[e], &p, 1e-15, &format!("{cname}: load {e} cached point"));
+            d.point_jacobian(&model, loads[e].link, &p, &mut jp);
+            d.angular_jacobian(&model, loads[e].link, &mut jw);
+            for n in &names {
+                let k = model.q_index(n).unwrap();
+                close3(
+                    &jp.column(k).into_owned(),
+                    &v3(&l["jacobian_linear"][n]),
+                    1e-12,
+                    &format!("{cname}: load {e} ∂p/∂{n}"),
+                );
+                close3(
+                    &jw.column(k).into_owned(),
+                    &v3(&l["jacobian_angular"][n]),
+                    1e-12,
+                    &format!("{cname}: load {e} ∂ω/∂{n}"),
+                );
+            }
+        }
+
+        // centre of mass and its Jacobian (root link's mass included, see the module docs)
+        close3(&d.com_m, &v3(&c["com_m"]), 1e-12, &format!("{cname}: CoM"));
+        for n in &names {
+            let k = model.q_index(n).unwrap();
+            close3(
+                &d.com_jacobian.column(k).into_owned(),
+                &v3(&c["com_jacobian"][n]),
+                1e-12,
+                &format!("{cname}: ∂CoM/∂{n}"),
+            );
+        }
+
+        // the one-call form gives the same torques
+        let mut d2 = StaticsData::new(&model, loads.len());
+        holding_torques(&model, &mut d2, &q, &loads, &g);
+        assert_eq!(d2.tau_nm, d.tau_nm, "{cname}: holding_torques = fk + moments + loads");
+
+        // gravity alone: the torques and their derivative
+        let mut d0 = StaticsData::new(&model, 0);
+        holding_torques(&model, &mut d0, &q, &[], &g);
+        holding_torque_derivative(&model, &mut d0);
+        let dg = c["dtau_gravity_dq"].as_array().unwrap();
+        let dscale = dg
             .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
-        assert!((d.hand_pos_m - Vector3::new(p[0], p[1], p[2])).norm() < 1e-9);
-        for (name, j) in joints {
-            let i = m.q_index(name).unwrap();
-            let g = j["gravity_torque_nm"].as_f64().unwrap();
-            let l = j["load_torque_nm"].as_f64().unwrap();
-            assert!(
-                (d.tau_gravity_nm[i] - g).abs() < 1e-9,
-                "{name}: gravity {} vs pinocchio {g}",
-                d.tau_gravity_nm[i]
+            .flat_map(|r| r.as_array().unwrap().iter().map(|x| f(x).abs()))
+            .fold(1.0, f64::max);
+        for (r, rn) in names.iter().enumerate() {
+            let kr = model.q_index(rn).unwrap();
+            close(
+                d0.tau_nm[kr],
+                f(&c["tau_gravity_nm"][rn]),
+                1e-9 * gscale,
+                &format!("{cname}: τ without loads {rn}"),
             );
-            assert!(
-                (d.tau_load_nm[i] - l).abs() < 1e-9,
-                "{name}: load {} vs pinocchio {l}",
-                d.tau_load_nm[i]
-            );
-            let jc: Vec<f64> = j["jacobian"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect();
-            assert!(
-                (d.jacobian.column(i) - Vector3::new(jc[0], jc[1], jc[2])).norm() < 1e-9,
-                "{name}: jacobian"
-            );
+            for (col, cn) in names.iter().enumerate() {
+                let kc = model.q_index(cn).unwrap();
+                close(
+                    d0.dtau_dq[(kr, kc)],
+                    f(&dg[r][col]),
+                    1e-9 * dscale,
+                    &format!("{cname}: ∂τ_gravity({rn})/∂q({cn})"),
+                );
+            }
         }
     }
+}
+
+#[test]
+fn worker_matches_pinocchio_in_five_postures_with_hand_and_foot_loads() {
+    check_robot("worker");
+}
+
+#[test]
+fn two_link_arm_matches_pinocchio() {
+    check_robot("two_link");
+}
+
+#[test]
+fn branched_tree_matches_pinocchio() {
+    check_robot("tree");
+}
+
+#[test]
+fn every_urdf_geometry_matches_pinocchio() {
+    check_robot("geometry");
+}
+
+/// The golden files cover what the tests rely on: the worker's five postures, both hands and
+/// both feet loaded, the pelvis joints among the compared torques.
+#[test]
+fn golden_files_cover_the_worker() {
+    let doc = golden("worker");
+    let names: Vec<String> = doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(names, ["standing", "stoop", "squat", "reach", "asymmetric"]);
+    let c = &doc["cases"][0];
+    let links: Vec<&str> = c["loads"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["link"].as_str().unwrap())
+        .collect();
+    assert_eq!(links, ["r_hand_grip", "l_hand_grip", "r_foot", "l_foot"]);
+    for j in posture_opt::body::worker::PELVIS_JOINTS {
+        assert!(c["tau_nm"][j].is_f64(), "{j}");
+    }
+    // the pelvis joints' torques are not zero with unbalanced foot forces: the comparison
+    // exercises them
+    assert!(f(&doc["cases"][4]["tau_nm"]["pelvis_tz"]).abs() > 1.0);
 }

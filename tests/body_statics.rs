@@ -1,174 +1,430 @@
-//! Body statics against a hand-worked two-link arm, finite differences, and joint-order invariance.
+//! Body statics: the two-link arm worked out by hand, and every Jacobian (point, angular, centre of
+//! mass) and the holding-torque derivative against central finite differences of the quantities
+//! they differentiate, over random postures and loads, on the worker (`robots/worker.urdf`), the
+//! branched tree (`tests/data/tree.urdf`), the two-link arm and `tests/data/geometry.urdf` (fixed
+//! joints mid-chain, continuous and prismatic joints, tilted and non-unit axes, rotated origins).
+//! Also: the order of joints in the file does not matter, and malformed URDFs are refused by
+//! element name.
 
-use nalgebra::Vector3;
+use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
 use posture_opt::body::{
-    holding_torque_derivative, holding_torques, BodyModel, StaticsData, GRAVITY_M_S2,
+    holding_torque_derivative, holding_torques, BodyError, BodyModel, JointKind, PointLoad,
+    StaticsData, GRAVITY_M_S2,
 };
+use proptest::prelude::*;
 
-fn data_path(name: &str) -> String {
-    format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"))
+fn path(rel: &str) -> String {
+    format!("{}/{rel}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn load_model(rel: &str) -> BodyModel {
+    BodyModel::from_urdf_file(path(rel)).unwrap()
+}
+
+// ---------------------------------------------------------------------------------------------
+// The two-link arm (tests/data/two_link.urdf) by hand.
+//
+// Shoulder at (0, 0, 1), both axes −y: a positive angle lifts the link (x toward +z). Upper link
+// 0.3 m, 2 kg with its CoM at 0.15 m; forearm 1.5 kg with its CoM at 0.1 m; the tip 0.25 m past
+// the elbow. With φ1 = θ1 and φ2 = θ1 + θ2 the angles of the links above the horizontal:
+//   elbow E = (0.3 cos φ1, 0, 1 + 0.3 sin φ1), tip T = E + 0.25 (cos φ2, 0, sin φ2);
+//   holding torque against gravity (weights times horizontal levers)
+//     τ1 = g [2·0.15 cos φ1 + 1.5 (0.3 cos φ1 + 0.1 cos φ2)],  τ2 = g·1.5·0.1 cos φ2;
+//   a force F = (Fx, Fy, Fz) at the tip adds −J_Tᵀ F, J_T = [∂T/∂θ1, ∂T/∂θ2]:
+//     τ1 += Fx (0.3 sin φ1 + 0.25 sin φ2) − Fz (0.3 cos φ1 + 0.25 cos φ2),
+//     τ2 += Fx 0.25 sin φ2 − Fz 0.25 cos φ2;
+//   a moment M on the forearm adds −(−ŷ)·M = M_y to both.
+// ---------------------------------------------------------------------------------------------
+
+const G: f64 = 9.81;
+const M1: f64 = 2.0;
+const M2: f64 = 1.5;
+
+struct TwoLink {
+    tip: Vector3<f64>,
+    com: Vector3<f64>,
+    tip_jac: [Vector3<f64>; 2],
+    com_jac: [Vector3<f64>; 2],
+    tau_gravity: [f64; 2],
+    tau: [f64; 2],
+    dtau: [[f64; 2]; 2],
+}
+
+fn two_link_by_hand(t1: f64, t2: f64, f: Vector3<f64>, my: f64) -> TwoLink {
+    let (s1, c1) = t1.sin_cos();
+    let (s2, c2) = (t1 + t2).sin_cos();
+    let tip = Vector3::new(0.3 * c1 + 0.25 * c2, 0.0, 1.0 + 0.3 * s1 + 0.25 * s2);
+    let p1 = Vector3::new(0.15 * c1, 0.0, 1.0 + 0.15 * s1);
+    let p2 = Vector3::new(0.3 * c1 + 0.1 * c2, 0.0, 1.0 + 0.3 * s1 + 0.1 * s2);
+    let com = (M1 * p1 + M2 * p2) / (M1 + M2);
+    let tip_jac = [
+        Vector3::new(-0.3 * s1 - 0.25 * s2, 0.0, 0.3 * c1 + 0.25 * c2),
+        Vector3::new(-0.25 * s2, 0.0, 0.25 * c2),
+    ];
+    let com_jac = [
+        (M1 * Vector3::new(-0.15 * s1, 0.0, 0.15 * c1)
+            + M2 * Vector3::new(-0.3 * s1 - 0.1 * s2, 0.0, 0.3 * c1 + 0.1 * c2))
+            / (M1 + M2),
+        M2 * Vector3::new(-0.1 * s2, 0.0, 0.1 * c2) / (M1 + M2),
+    ];
+    let tg = [
+        G * (M1 * 0.15 * c1 + M2 * (0.3 * c1 + 0.1 * c2)),
+        G * M2 * 0.1 * c2,
+    ];
+    let tau = [
+        tg[0] + f.x * (0.3 * s1 + 0.25 * s2) - f.z * (0.3 * c1 + 0.25 * c2) + my,
+        tg[1] + f.x * 0.25 * s2 - f.z * 0.25 * c2 + my,
+    ];
+    // derivatives of the expressions above
+    let d22 = -G * M2 * 0.1 * s2 + f.x * 0.25 * c2 + f.z * 0.25 * s2;
+    let d11 = -G * (M1 * 0.15 * s1 + M2 * (0.3 * s1 + 0.1 * s2))
+        + f.x * (0.3 * c1 + 0.25 * c2)
+        + f.z * (0.3 * s1 + 0.25 * s2);
+    TwoLink {
+        tip,
+        com,
+        tip_jac,
+        com_jac,
+        tau_gravity: tg,
+        tau,
+        dtau: [[d11, d22], [d22, d22]],
+    }
 }
 
 #[test]
-fn two_link_arm_by_hand() {
-    let m = BodyModel::from_urdf_file(data_path("two_link.urdf")).unwrap();
-    let mut d = StaticsData::new(&m);
-    let (q1, q2) = (0.3f64, 0.5f64);
-    let load_kg = 4.0;
-    let g = 9.81;
-    let hand = m.frame_link("tip").unwrap();
-    holding_torques(
-        &m,
-        &mut d,
-        &[q1, q2],
-        hand,
-        &Vector3::new(0.0, 0.0, -load_kg * g),
-        &GRAVITY_M_S2,
-    );
-    let (c1, s1, c12, s12) = (q1.cos(), q1.sin(), (q1 + q2).cos(), (q1 + q2).sin());
-    // hand position: shoulder at z = 1, links 0.3 and 0.25 in the x-z plane
-    let p = Vector3::new(0.3 * c1 + 0.25 * c12, 0.0, 1.0 + 0.3 * s1 + 0.25 * s12);
-    assert!((d.hand_pos_m - p).norm() < 1e-12);
-    // gravity: horizontal lever arms times weights; upper 2 kg at 0.15, fore 1.5 kg at 0.1
-    let tg1 = g * (2.0 * 0.15 * c1 + 1.5 * (0.3 * c1 + 0.1 * c12));
-    let tg2 = g * 1.5 * 0.1 * c12;
-    assert!((d.tau_gravity_nm[0] - tg1).abs() < 1e-12);
-    assert!((d.tau_gravity_nm[1] - tg2).abs() < 1e-12);
-    // 4 kg in the hand
-    let tl1 = g * load_kg * (0.3 * c1 + 0.25 * c12);
-    let tl2 = g * load_kg * 0.25 * c12;
-    assert!((d.tau_load_nm[0] - tl1).abs() < 1e-12);
-    assert!((d.tau_load_nm[1] - tl2).abs() < 1e-12);
-    assert!((d.tau_nm[0] - tg1 - tl1).abs() < 1e-12);
-    // Jacobian columns
-    let j1 = Vector3::new(-0.3 * s1 - 0.25 * s12, 0.0, 0.3 * c1 + 0.25 * c12);
-    let j2 = Vector3::new(-0.25 * s12, 0.0, 0.25 * c12);
-    assert!((d.jacobian.column(0) - j1).norm() < 1e-12);
-    assert!((d.jacobian.column(1) - j2).norm() < 1e-12);
-    // derivative of τ2 = g(1.5·0.1 + 4·0.25) cos(q1+q2) wrt q1 and q2: −g(0.15 + 1.0) sin(q1+q2)
-    holding_torque_derivative(&m, &mut d);
-    let dt2 = -g * (0.15 + 1.0) * s12;
-    assert!((d.dtau_dq[(1, 0)] - dt2).abs() < 1e-12);
-    assert!((d.dtau_dq[(1, 1)] - dt2).abs() < 1e-12);
-    let dt1_dq1 = -g * (2.0 * 0.15 * s1 + 1.5 * (0.3 * s1 + 0.1 * s12))
-        - g * load_kg * (0.3 * s1 + 0.25 * s12);
-    assert!((d.dtau_dq[(0, 0)] - dt1_dq1).abs() < 1e-12);
+fn two_link_arm_by_hand_at_a_glance() {
+    // arm horizontal, 5 kg at the tip: τ1 = 9.81 (0.3 + 1.5·0.4 + 5·0.55) = 35.7084
+    let m = load_model("tests/data/two_link.urdf");
+    let mut d = StaticsData::new(&m, 1);
+    let tip = m.frame_link("tip").unwrap();
+    let w = PointLoad::force_at(tip, Vector3::new(0.0, 0.0, -5.0 * G));
+    holding_torques(&m, &mut d, &[0.0, 0.0], &[w], &GRAVITY_M_S2);
+    assert!((d.tau_nm[0] - 9.81 * (0.3 + 0.6 + 2.75)).abs() < 1e-12, "{}", d.tau_nm[0]);
+    assert!((d.tau_nm[1] - 9.81 * (0.15 + 1.25)).abs() < 1e-12, "{}", d.tau_nm[1]);
+    // straight up: no lever, no torque
+    holding_torques(&m, &mut d, &[std::f64::consts::FRAC_PI_2, 0.0], &[w], &GRAVITY_M_S2);
+    assert!(d.tau_nm.amax() < 1e-12);
 }
 
-fn fd_check(m: &BodyModel, hand: &str, q: &[f64], force: Vector3<f64>, gravity: Vector3<f64>) {
-    let hand = m.frame_link(hand).unwrap();
-    let mut d = StaticsData::new(m);
-    holding_torques(m, &mut d, q, hand, &force, &gravity);
-    holding_torque_derivative(m, &mut d);
-    let (jac, dtau) = (d.jacobian.clone(), d.dtau_dq.clone());
-    let h = 1e-6;
-    for i in 0..m.nq() {
-        let mut qp = q.to_vec();
-        let mut qm = q.to_vec();
-        qp[i] += h;
-        qm[i] -= h;
-        holding_torques(m, &mut d, &qp, hand, &force, &gravity);
-        let (pp, tp) = (d.hand_pos_m, d.tau_nm.clone());
-        holding_torques(m, &mut d, &qm, hand, &force, &gravity);
-        let (pm, tm) = (d.hand_pos_m, d.tau_nm.clone());
-        let jcol = (pp - pm) / (2.0 * h);
-        assert!(
-            (jac.column(i) - jcol).norm() < 1e-7,
-            "J column {i}: {} vs {}",
-            jac.column(i),
-            jcol
-        );
-        let dcol = (tp - tm) / (2.0 * h);
-        for r in 0..m.nq() {
-            assert!(
-                (dtau[(r, i)] - dcol[r]).abs() < 1e-6,
-                "dtau[{r},{i}] {} vs fd {}",
-                dtau[(r, i)],
-                dcol[r]
-            );
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn two_link_arm_matches_its_closed_forms(
+        t1 in -3.0f64..3.0, t2 in 0.0f64..2.6,
+        fx in -100.0f64..100.0, fy in -100.0f64..100.0, fz in -100.0f64..100.0,
+        my in -10.0f64..10.0, mx in -10.0f64..10.0,
+    ) {
+        let m = load_model("tests/data/two_link.urdf");
+        let (tip, fore) = (m.frame_link("tip").unwrap(), m.frame_link("fore").unwrap());
+        let f = Vector3::new(fx, fy, fz);
+        let loads = [
+            PointLoad::force_at(tip, f),
+            // a pure moment on the forearm: only its y component (along the axes) matters
+            PointLoad { link: fore, point_in_link_m: Vector3::zeros(), force_n: Vector3::zeros(),
+                        moment_nm: Vector3::new(mx, my, 0.0) },
+        ];
+        let mut d = StaticsData::new(&m, 2);
+        holding_torques(&m, &mut d, &[t1, t2], &loads, &GRAVITY_M_S2);
+        holding_torque_derivative(&m, &mut d);
+        let e = two_link_by_hand(t1, t2, f, my);
+        prop_assert!((d.link_point(&m, tip, &Vector3::zeros()) - e.tip).norm() < 1e-12);
+        prop_assert!((d.com_m - e.com).norm() < 1e-12);
+        let mut j = Matrix3xX::zeros(2);
+        d.point_jacobian(&m, tip, &e.tip, &mut j);
+        for k in 0..2 {
+            prop_assert!((j.column(k) - e.tip_jac[k]).norm() < 1e-12);
+            prop_assert!((d.com_jacobian.column(k) - e.com_jac[k]).norm() < 1e-12);
+            prop_assert!((d.tau_gravity_nm[k] - e.tau_gravity[k]).abs() < 1e-11);
+            prop_assert!((d.tau_nm[k] - e.tau[k]).abs() < 1e-10,
+                "τ{k}: {} vs hand {}", d.tau_nm[k], e.tau[k]);
+            for c in 0..2 {
+                prop_assert!((d.dtau_dq[(k, c)] - e.dtau[k][c]).abs() < 1e-10,
+                    "∂τ{k}/∂θ{c}: {} vs hand {}", d.dtau_dq[(k, c)], e.dtau[k][c]);
+            }
+        }
+        d.angular_jacobian(&m, fore, &mut j);
+        for k in 0..2 {
+            prop_assert_eq!(j.column(k).into_owned(), Vector3::new(0.0, -1.0, 0.0));
         }
     }
 }
 
-#[test]
-fn jacobian_and_torque_derivative_match_finite_differences() {
-    let m = BodyModel::from_urdf_file(data_path("tree.urdf")).unwrap();
-    assert_eq!(m.nq(), 6);
-    for q in [
-        [0.0; 6],
-        [0.3, -0.7, 0.1, 1.1, 0.4, -0.9],
-        [-1.2, 0.9, -0.15, -0.4, 2.0, 0.3],
-    ] {
-        fd_check(&m, "tip", &q, Vector3::new(3.0, -20.0, -45.0), GRAVITY_M_S2);
-        fd_check(
-            &m,
-            "side2",
-            &q,
-            Vector3::new(0.0, 5.0, -10.0),
-            Vector3::new(0.5, -1.0, -9.7),
-        );
-        fd_check(&m, "l2", &q, Vector3::new(-8.0, 0.0, 2.0), GRAVITY_M_S2);
+// ---------------------------------------------------------------------------------------------
+// Finite differences on every robot.
+// ---------------------------------------------------------------------------------------------
+
+const ROBOTS: [&str; 4] = [
+    "robots/worker.urdf",
+    "tests/data/tree.urdf",
+    "tests/data/two_link.urdf",
+    "tests/data/geometry.urdf",
+];
+
+/// A posture from uniform numbers in 0..1: inside the limits, continuous joints over ±π.
+fn posture(m: &BodyModel, u: &[f64]) -> Vec<f64> {
+    (0..m.nq())
+        .map(|k| {
+            let j = m.q_joint(k);
+            let (lo, hi) = if j.kind == JointKind::Continuous {
+                (-std::f64::consts::PI, std::f64::consts::PI)
+            } else {
+                (j.lower_rad, j.upper_rad)
+            };
+            lo + u[k % u.len()] * (hi - lo)
+        })
+        .collect()
+}
+
+/// Loads on links picked by `pick`, with points, forces and moments from the numbers in `r`
+/// (each in −1..1).
+fn loads(m: &BodyModel, pick: &[usize], r: &[f64]) -> Vec<PointLoad> {
+    pick.iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            let x = |k: usize| r[(9 * i + k) % r.len()];
+            PointLoad {
+                link: p % m.links.len(),
+                point_in_link_m: 0.2 * Vector3::new(x(0), x(1), x(2)),
+                force_n: 80.0 * Vector3::new(x(3), x(4), x(5)),
+                moment_nm: 8.0 * Vector3::new(x(6), x(7), x(8)),
+            }
+        })
+        .collect()
+}
+
+/// (ω such that dR = [ω]× R) from R(q + h) and R(q − h): the axial part of (R₊ − R₋)/(2h) · Rᵀ.
+fn angular_fd(rp: &Matrix3<f64>, rm: &Matrix3<f64>, r: &Matrix3<f64>, h: f64) -> Vector3<f64> {
+    let s = (rp - rm) / (2.0 * h) * r.transpose();
+    Vector3::new(s[(2, 1)] - s[(1, 2)], s[(0, 2)] - s[(2, 0)], s[(1, 0)] - s[(0, 1)]) / 2.0
+}
+
+/// Point, angular and CoM Jacobians and ∂τ/∂q against central differences at `q` under `ld` and
+/// gravity `g`. Returns the largest errors relative to the quantities' scales.
+fn fd_check(m: &BodyModel, q: &[f64], ld: &[PointLoad], g: &Vector3<f64>) -> Result<(), String> {
+    let nq = m.nq();
+    let h = 1e-6;
+    let mut d = StaticsData::new(m, ld.len());
+    holding_torques(m, &mut d, q, ld, g);
+    holding_torque_derivative(m, &mut d);
+    let dtau = d.dtau_dq.clone();
+    let com_jac = d.com_jacobian.clone();
+    let tau_scale = d.tau_nm.amax().max(1.0);
+    // Jacobians of each load point and link, at q
+    let mut jp = Vec::new();
+    let mut jw = Vec::new();
+    for l in ld {
+        let p = d.link_point(m, l.link, &l.point_in_link_m);
+        let mut a = Matrix3xX::zeros(nq);
+        let mut b = Matrix3xX::zeros(nq);
+        d.point_jacobian(m, l.link, &p, &mut a);
+        d.angular_jacobian(m, l.link, &mut b);
+        jp.push(a);
+        jw.push(b);
     }
+    let rots: Vec<Matrix3<f64>> = ld.iter().map(|l| d.link_pose(m, l.link).0).collect();
+    let mut dp = StaticsData::new(m, ld.len());
+    let mut dm = StaticsData::new(m, ld.len());
+    for k in 0..nq {
+        let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+        qp[k] += h;
+        qm[k] -= h;
+        holding_torques(m, &mut dp, &qp, ld, g);
+        holding_torques(m, &mut dm, &qm, ld, g);
+        let name = &m.q_joint(k).name;
+        // ∂τ/∂q_k: the loads keep their world forces and their points on the links
+        let col: DVector<f64> = (&dp.tau_nm - &dm.tau_nm) / (2.0 * h);
+        for r in 0..nq {
+            if (dtau[(r, k)] - col[r]).abs() > 2e-6 * tau_scale {
+                return Err(format!(
+                    "∂τ({})/∂q({name}) = {} but finite differences give {}",
+                    m.q_joint(r).name,
+                    dtau[(r, k)],
+                    col[r]
+                ));
+            }
+        }
+        let cfd = (dp.com_m - dm.com_m) / (2.0 * h);
+        if (com_jac.column(k) - cfd).norm() > 1e-8 {
+            return Err(format!(
+                "∂CoM/∂q({name}) = {} but finite differences give {cfd}",
+                com_jac.column(k)
+            ));
+        }
+        for (e, l) in ld.iter().enumerate() {
+            let pfd = (dp.link_point(m, l.link, &l.point_in_link_m)
+                - dm.link_point(m, l.link, &l.point_in_link_m))
+                / (2.0 * h);
+            if (jp[e].column(k) - pfd).norm() > 1e-8 {
+                return Err(format!(
+                    "point Jacobian of load {e} (link {}) column {name}: {} vs finite differences {pfd}",
+                    m.links[l.link].name,
+                    jp[e].column(k)
+                ));
+            }
+            let wfd = angular_fd(&dp.link_pose(m, l.link).0, &dm.link_pose(m, l.link).0, &rots[e], h);
+            if (jw[e].column(k) - wfd).norm() > 1e-8 {
+                return Err(format!(
+                    "angular Jacobian of link {} column {name}: {} vs finite differences {wfd}",
+                    m.links[l.link].name,
+                    jw[e].column(k)
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn jacobians_and_torque_derivative_match_finite_differences(
+        robot in 0usize..4,
+        u in prop::collection::vec(0.0f64..1.0, 38),
+        pick in prop::collection::vec(0usize..1000, 1..5),
+        r in prop::collection::vec(-1.0f64..1.0, 36),
+        tilted_gravity in any::<bool>(),
+    ) {
+        let m = load_model(ROBOTS[robot]);
+        let q = posture(&m, &u);
+        let ld = loads(&m, &pick, &r);
+        let g = if tilted_gravity { Vector3::new(0.8, -1.1, -9.7) } else { GRAVITY_M_S2 };
+        if let Err(e) = fd_check(&m, &q, &ld, &g) {
+            prop_assert!(false, "{}: {e}", ROBOTS[robot]);
+        }
+    }
+}
+
+/// The same check at a few fixed, named postures of every robot (zero posture included), so a
+/// failure reproduces without proptest.
+#[test]
+fn finite_differences_at_fixed_postures() {
+    for rel in ROBOTS {
+        let m = load_model(rel);
+        for u in [vec![0.5], vec![0.2, 0.9, 0.35, 0.7, 0.05], vec![0.97, 0.03, 0.6]] {
+            let q = posture(&m, &u);
+            let every_link: Vec<usize> = (0..m.links.len()).collect();
+            let ld = loads(&m, &every_link, &[0.3, -0.7, 0.5, 0.9, -0.2, 0.1, -0.6, 0.4, 0.8, -0.9]);
+            fd_check(&m, &q, &ld, &GRAVITY_M_S2).unwrap_or_else(|e| panic!("{rel}: {e}"));
+        }
+        // and at q = 0 exactly (axes aligned, sines zero)
+        let q = vec![0.0; m.nq()];
+        let ld = loads(&m, &[m.links.len() - 1, 1], &[0.1, 0.2, -0.3, 0.4, -0.5, 0.6, 0.7, -0.8, 0.9]);
+        fd_check(&m, &q, &ld, &GRAVITY_M_S2).unwrap_or_else(|e| panic!("{rel} at 0: {e}"));
+    }
+}
+
+/// Fixed joints fold into rigid bodies: one body per moving joint plus the root, and the model's
+/// total mass is every link's.
+#[test]
+fn fixed_joints_fold_into_bodies() {
+    let m = load_model("tests/data/geometry.urdf");
+    assert_eq!(m.nq(), 7);
+    assert_eq!(m.bodies.len(), 8);
+    let masses = [4.0, 2.5, 0.7, 1.8, 0.4, 1.1, 0.9, 1.3, 0.6, 0.5];
+    assert!((m.total_mass_kg() - masses.iter().sum::<f64>()).abs() < 1e-12);
+    // a1 and its fixed child a1_plate share a body; a4 and a4_weight and tool too
+    let body = |n: &str| m.link_in_body[m.frame_link(n).unwrap()].body;
+    assert_eq!(body("a1"), body("a1_plate"));
+    assert_eq!(body("a4"), body("a4_weight"));
+    assert_eq!(body("a4"), body("tool"));
+    assert_ne!(body("a2"), body("a3"));
+    // the continuous joints have no limits; the non-unit axis is normalised
+    let ja2 = m.q_joint(m.q_index("ja2").unwrap());
+    assert_eq!(ja2.kind, JointKind::Continuous);
+    assert!(ja2.lower_rad == f64::NEG_INFINITY && ja2.upper_rad == f64::INFINITY);
+    let ja1 = m.q_joint(m.q_index("ja1").unwrap());
+    assert!((ja1.axis - Vector3::new(0.0, 2.0, 1.0) / 5f64.sqrt()).norm() < 1e-15);
 }
 
 #[test]
 fn joint_order_in_the_file_does_not_matter() {
-    let text = std::fs::read_to_string(data_path("tree.urdf")).unwrap();
-    // reverse the order of the <joint> blocks
-    let start = text.find("  <joint").unwrap();
-    let end = text.rfind("</joint>").unwrap() + "</joint>".len();
-    let blocks: Vec<String> = text[start..end]
-        .split("</joint>")
-        .filter(|b| b.contains("<joint"))
-        .map(|b| format!("{}</joint>", b.trim_start_matches('\n')))
-        .collect();
-    let reversed = format!(
-        "{}{}{}",
-        &text[..start],
-        blocks.iter().rev().cloned().collect::<Vec<_>>().join("\n"),
-        &text[end..]
-    );
+    let text = std::fs::read_to_string(path("tests/data/geometry.urdf")).unwrap();
+    // the same robot with its <joint> elements in reverse order
+    let mut joints = Vec::new();
+    let mut rest = String::new();
+    let mut cur = text.as_str();
+    while let Some(s) = cur.find("<joint ") {
+        rest.push_str(&cur[..s]);
+        let e = cur[s..].find("</joint>").unwrap() + s + "</joint>".len();
+        joints.push(cur[s..e].to_string());
+        cur = &cur[e..];
+    }
+    let close = cur.find("</robot>").unwrap();
+    rest.push_str(&cur[..close]);
+    joints.reverse();
+    let reversed = format!("{rest}{}\n</robot>\n", joints.join("\n"));
     let a = BodyModel::from_urdf_str(&text, "a").unwrap();
     let b = BodyModel::from_urdf_str(&reversed, "b").unwrap();
-    let names = |m: &BodyModel| {
-        (0..m.nq())
-            .map(|i| m.q_joint(i).name.clone())
-            .collect::<Vec<_>>()
-    };
-    assert_ne!(
-        names(&a),
-        names(&b),
-        "the test must actually reorder the joints"
-    );
-    let q_named = [
-        ("j1", 0.3),
-        ("j2", -0.7),
-        ("j3", 0.1),
-        ("j4", 1.1),
-        ("js", 0.4),
-        ("js2", -0.9),
-    ];
+    let names = |m: &BodyModel| (0..m.nq()).map(|i| m.q_joint(i).name.clone()).collect::<Vec<_>>();
+    assert_ne!(names(&a), names(&b), "the test must reorder the joints");
+    let named = [("ja1", 0.4), ("ja2", -2.5), ("ja3", 0.12), ("ja4", 1.3), ("jb1", -0.1), ("jb2", 3.5), ("jc1", -0.8)];
     let torques = |m: &BodyModel| {
         let mut q = vec![0.0; m.nq()];
-        for (n, v) in q_named {
+        for (n, v) in named {
             q[m.q_index(n).unwrap()] = v;
         }
-        let mut d = StaticsData::new(m);
-        holding_torques(
-            m,
-            &mut d,
-            &q,
-            m.frame_link("tip").unwrap(),
-            &Vector3::new(1.0, 2.0, -30.0),
-            &GRAVITY_M_S2,
-        );
-        q_named
-            .iter()
-            .map(|(n, _)| d.tau_nm[m.q_index(n).unwrap()])
-            .collect::<Vec<_>>()
+        let tool = m.frame_link("tool").unwrap();
+        let mut d = StaticsData::new(m, 1);
+        holding_torques(m, &mut d, &q, &[PointLoad::force_at(tool, Vector3::new(1.0, 2.0, -30.0))], &GRAVITY_M_S2);
+        let t: Vec<f64> = named.iter().map(|(n, _)| d.tau_nm[m.q_index(n).unwrap()]).collect();
+        (t, d.com_m)
     };
-    let (ta, tb) = (torques(&a), torques(&b));
+    let ((ta, ca), (tb, cb)) = (torques(&a), torques(&b));
     for (x, y) in ta.iter().zip(&tb) {
-        assert!((x - y).abs() < 1e-12);
+        assert!((x - y).abs() < 1e-12, "{x} vs {y}");
+    }
+    assert!((ca - cb).norm() < 1e-14);
+}
+
+#[test]
+fn malformed_urdfs_are_refused_by_element() {
+    let robot = |links: &str, joints: &str| {
+        format!("<?xml version=\"1.0\"?><robot name=\"r\">{links}{joints}</robot>")
+    };
+    let two = |child: &str, joint: &str| robot(&format!("<link name=\"base\"/>{child}"), joint);
+    let good_joint = "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>";
+    let cases: Vec<(String, &[&str])> = vec![
+        (
+            two("<link name=\"arm\"><collision><geometry><cylinder radius=\"20\" length=\"1\"/></geometry></collision></link>", good_joint),
+            &["link 'arm'", "collision", "radius"],
+        ),
+        (
+            two("<link name=\"arm\"><collision><geometry><box size=\"0.1 1e9 0.1\"/></geometry></collision></link>", good_joint),
+            &["link 'arm'", "box size"],
+        ),
+        (
+            two("<link name=\"arm\"><inertial><mass value=\"-2\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>", good_joint),
+            &["link 'arm'", "mass"],
+        ),
+        (
+            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><origin xyz=\"1e6 0 0\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            &["joint 'j'", "origin"],
+        ),
+        (
+            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            &["joint 'j'", "axis"],
+        ),
+        (
+            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"nowhere\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            &["joint 'j'", "nowhere"],
+        ),
+        (
+            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 1 0\"/><limit lower=\"1\" upper=\"-1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            &["joint 'j'", "limit"],
+        ),
+        (
+            two("<link name=\"arm\"><collision><geometry><mesh filename=\"arm.stl\"/></geometry></collision></link>", good_joint),
+            &["link 'arm'", "mesh"],
+        ),
+    ];
+    for (text, words) in cases {
+        let e: BodyError = BodyModel::from_urdf_str(&text, "bad.urdf").unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.starts_with("bad.urdf"), "{msg}");
+        for w in words {
+            assert!(msg.contains(w), "'{msg}' should name {w}");
+        }
     }
 }

@@ -3,8 +3,8 @@
 //!
 //! * **Trunk**: the trunk's long axis against the vertical, in the body's sagittal and frontal
 //!   planes (the pelvis's heading, projected on the floor, sets "forward"): so a stoop that tilts
-//!   the pelvis counts as trunk flexion, as an observer would see it. Twist: the trunk's heading
-//!   against the pelvis's.
+//!   the pelvis counts as trunk flexion, as an observer would see it; side bending is the axis's
+//!   angle out of the sagittal plane. Twist: the shoulder line's heading against the pelvis's.
 //! * **Neck**: the head's long axis against the trunk's, in the trunk's planes; twist: the neck's
 //!   axial rotation.
 //! * **Upper arm**: the shoulder-to-elbow direction in the trunk frame: flexion is its elevation
@@ -97,16 +97,18 @@ impl BodyAngles {
         let left = Vector3::z().cross(&fwd);
         let t_axis = r_trunk * Vector3::z();
         let trunk_flexion_deg = deg(t_axis.dot(&fwd).atan2(t_axis.z));
-        let trunk_side_bend_deg = deg(t_axis.dot(&left).atan2(t_axis.z));
+        // out of the sagittal plane: well defined also when the trunk is flexed near 90°
+        let trunk_side_bend_deg = deg(t_axis.dot(&left).clamp(-1.0, 1.0).asin());
+        // the shoulder line's heading (the frames' y axes stay near horizontal when bending)
         let heading = |r: &Matrix3<f64>| {
-            let x = r * Vector3::x();
-            x.y.atan2(x.x)
+            let y = r * Vector3::y();
+            (-y.x).atan2(y.y)
         };
         let wrap = |a: f64| (a + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
         let trunk_twist_deg = deg(wrap(heading(&r_trunk) - heading(&r_pelvis)));
         let h_axis = r_trunk.transpose() * (r_head * Vector3::z());
         let neck_flexion_deg = deg(h_axis.x.atan2(h_axis.z));
-        let neck_side_bend_deg = deg(h_axis.y.atan2(h_axis.z));
+        let neck_side_bend_deg = deg(h_axis.y.clamp(-1.0, 1.0).asin());
         let neck_twist_deg = deg(q_rad[joint("neck_axial_rotation")?]);
         let arm = |side: &str, outward_sign: f64| -> Result<ArmAngles, NotWorker> {
             let (upper, fore, hand, grip) = (

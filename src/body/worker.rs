@@ -610,7 +610,9 @@ pub fn worker_urdf(
         [0.0, 0.0, trunk_com],
         Some((
             radius::TRUNK * r,
-            [0.0, 0.0, 0.05 * h],
+            // from the abdomen up: below it the trunk's capsule would meet the thighs' at the
+            // hip joints in any flexion (an artefact of capsules, not a collision)
+            [0.0, 0.0, 0.10 * h],
             [0.0, 0.0, supr - 0.06 * h],
         )),
     );

@@ -66,7 +66,9 @@ impl Default for PlanOptions {
 /// Most coordination passes.
 pub const MAX_PASSES: usize = 5;
 /// Passes stop when the objective falls by less than this (relative).
-pub const PASS_TOLERANCE: f64 = 1e-5;
+pub const PASS_TOLERANCE: f64 = 1e-4;
+/// Coordination passes of the fatigue-unaware baseline (it starts from the main plan).
+pub const BASELINE_PASSES: usize = 2;
 /// SQP iterations a re-plan allows each phase (it starts from the previous plan's posture).
 pub const REPLAN_ITERATIONS: usize = 15;
 
@@ -81,6 +83,8 @@ pub struct Planner<'t> {
     qp_solves_before: u64,
     /// The first plan's postures (the fatigue-unaware baseline starts from them).
     first_plan: Option<GroupPostures>,
+    /// The nearest-to-neutral reaching postures (the first plan's start, a baseline).
+    neutral: Option<GroupPostures>,
 }
 
 /// Postures of every group, with their solve records.
@@ -137,6 +141,7 @@ impl<'t> Planner<'t> {
             rest_loads,
             rest_solve,
             first_plan: None,
+            neutral: None,
         })
     }
 
@@ -299,6 +304,7 @@ impl<'t> Planner<'t> {
         fatigue_only: bool,
     ) -> Result<(GroupPostures, Vec<f64>), PlanError> {
         let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0)?;
+        self.neutral = Some(gp.clone());
         let passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
         Ok((gp, passes))
     }
@@ -332,13 +338,13 @@ impl<'t> Planner<'t> {
         let mut out = Vec::new();
         let blind = {
             let mut gp = self.first_plan.clone().expect("the main plan was made first");
-            let passes = self.optimise(&mut gp, &fresh, 1, opts.fatigue_only, false, MAX_PASSES)?;
+            let passes = self.optimise(&mut gp, &fresh, 1, opts.fatigue_only, false, BASELINE_PASSES)?;
             Some(self.simulate(gp, passes, held)?)
         };
         let weight_free = 0.0;
         let gp = self.solve_independent(&mut || Box::new(SquaredLoads), weight_free)?;
         let min_load = self.simulate(gp, Vec::new(), held)?;
-        let gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0)?;
+        let gp = self.neutral.clone().expect("the main plan was made first");
         let neutral = self.simulate(gp, Vec::new(), held)?;
         let total = main.summary.total_u;
         let mut push = |name: &str, description: &str, p: &Plan| {

@@ -152,8 +152,8 @@ pub struct QpPrecision {
 impl Default for QpPrecision {
     fn default() -> Self {
         QpPrecision {
-            tol_gap: std::env::var("QP_TOL").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-9),
-            tol_feas: std::env::var("QP_TOL").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-9),
+            tol_gap: 1e-9,
+            tol_feas: 1e-9,
         }
     }
 }
@@ -179,6 +179,10 @@ impl PostureQp {
             }
             for r in 0..sizes.e {
                 pat.push((rows.balance + r, col));
+            }
+            // capacity rows: the strength's posture dependence
+            for r in 0..sizes.c {
+                pat.push((rows.cap + r, col));
             }
         }
         for i in 0..a {
@@ -218,11 +222,12 @@ impl PostureQp {
             .tol_gap_abs(precision.tol_gap)
             .tol_gap_rel(precision.tol_gap)
             .tol_feas(precision.tol_feas)
-            .iterative_refinement_enable(std::env::var("QP_NOREFINE").is_err())
-            .iterative_refinement_reltol(std::env::var("QP_IRTOL").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-13))
-            .iterative_refinement_abstol(std::env::var("QP_IRTOL").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-12))
-            .iterative_refinement_max_iter(std::env::var("QP_IRMAX").ok().and_then(|v| v.parse().ok()).unwrap_or(10))
-            .direct_solve_method(std::env::var("QP_METHOD").unwrap_or("qdldl".into()))
+            .iterative_refinement_enable(true)
+            .iterative_refinement_reltol(1e-13)
+            .iterative_refinement_abstol(1e-12)
+            .iterative_refinement_max_iter(std::env::var("XIR").ok().and_then(|v| v.parse().ok()).unwrap_or(10))
+            .static_regularization_constant(std::env::var("XREG").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-8))
+            .direct_solve_method("qdldl".into())
             .build()
             .map_err(|e| QpError::Setup(e.to_string()))?;
         let mut qp = PostureQp {
@@ -249,12 +254,9 @@ impl PostureQp {
         // P's pattern: column j of the posture block holds rows 0..=j; other columns their diagonal.
         let mut colptr = vec![0usize];
         let mut rowval = Vec::new();
-        let dense = std::env::var("QP_DIAGP").is_err();
         for j in 0..cols.n_var {
-            if j < sizes.n && dense {
+            if j < sizes.n {
                 rowval.extend(0..=j);
-            } else if j < sizes.n {
-                rowval.push(j);
             } else {
                 rowval.push(j);
             }
@@ -308,6 +310,14 @@ impl PostureQp {
         let s = self.slot[row * self.cols.n_var + col];
         debug_assert!(s != u32::MAX, "({row}, {col}) is not in the QP's pattern");
         self.a_nz[s as usize] = v;
+    }
+
+    /// Adds to A\[row, col\] (must be in the pattern).
+    #[inline]
+    pub fn add_a(&mut self, row: usize, col: usize, v: f64) {
+        let s = self.slot[row * self.cols.n_var + col];
+        debug_assert!(s != u32::MAX, "({row}, {col}) is not in the QP's pattern");
+        self.a_nz[s as usize] += v;
     }
 
     /// A\[row, col\] (0 outside the pattern).

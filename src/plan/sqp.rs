@@ -373,7 +373,20 @@ fn build_qp(
                     Direction::Positive => c.s_plus + srow,
                     Direction::Negative => c.s_minus + srow,
                 };
-                qp.set_a(rr, col, (1.0 - slope) / hj.mvc_at(q));
+                let mvc = hj.mvc_at(q);
+                qp.set_a(rr, col, (1.0 - slope) / mvc);
+                // the load s/MVC(q) also moves with the strength's posture dependence
+                let tau = pw.data.tau_nm[hj.q_index];
+                let s_bar = match hj.direction {
+                    Direction::Positive => tau.max(0.0),
+                    Direction::Negative => (-tau).max(0.0),
+                };
+                if hj.posture_dependent() && s_bar > 0.0 {
+                    hj.mvc_gradient(q, &mut work.mvc_grad);
+                    for &(k, dm) in &work.mvc_grad {
+                        qp.add_a(rr, c.dq + k, -(1.0 - slope) * s_bar * dm / (mvc * mvc));
+                    }
+                }
                 qp.b[rr] = bound - slope * work.f[h];
             }
             None => qp.b[rr] = 1.0,
@@ -470,6 +483,9 @@ fn build_qp(
     }
 }
 
+/// Largest diagonal entry of the BFGS part before it is reset \[1/rad²\].
+const BFGS_LARGEST: f64 = 1e4;
+
 /// Initial curvature of the BFGS part \[1/rad²\] (scale of J's curvature in q).
 const BFGS_INITIAL: f64 = 0.05;
 
@@ -545,6 +561,12 @@ fn update_curvature(work: &mut SqpWork, q: &[f64]) {
             }
         }
     }
+    // A curvature far beyond the problem's scale comes from steps across kinks (a torque
+    // changing sign, a contact or capacity row switching): it freezes the steps. Start again.
+    let largest = (0..n).map(|k| work.bfgs[k * n + k]).fold(0.0f64, f64::max);
+    if largest > BFGS_LARGEST {
+        reset_curvature(work);
+    }
     let damping = work.settings.damping;
     let qp = &mut work.qp;
     for i in 0..n {
@@ -600,6 +622,28 @@ fn kkt(work: &mut SqpWork) -> (f64, f64) {
     (stationarity, complementarity)
 }
 
+/// The ℓ1 merit's decrease predicted by the QP's solution: the quadratic model of the objective
+/// over the posture and torque variables, from the current point `x0` to the solution, plus each
+/// penalty times the fall of its linearised violation (equality slacks `e`, `v_cap`, `v_geo`).
+fn predicted_decrease(work: &SqpWork, m0: &Merit) -> f64 {
+    let qp = &work.qp;
+    let c = qp.cols;
+    let s = work.settings;
+    let model = |x: &[f64]| -> f64 {
+        let mut xr = x.to_vec();
+        xr[c.e..].iter_mut().for_each(|v| *v = 0.0);
+        let mut px = vec![0.0; c.n_var];
+        qp.p_times(&xr, &mut px);
+        (0..c.e).map(|i| 0.5 * px[i] * xr[i] + qp.q[i] * xr[i]).sum()
+    };
+    let e_after: f64 = qp.x[c.e..c.v_cap].iter().map(|v| v.abs()).sum();
+    let objective = model(&work.x0) - model(&qp.x);
+    let violations = s.mu_eq * (m0.eq_l1 - e_after)
+        + s.mu_geo * (m0.geo - qp.x[c.v_geo].max(0.0))
+        + s.mu_cap * (m0.cap - qp.x[c.v_cap].max(0.0));
+    (objective + violations).max(0.0)
+}
+
 /// Optimises the posture `q` (in/out) of one phase.
 pub fn solve_phase(
     task: &Task,
@@ -651,14 +695,10 @@ pub fn solve_phase(
             break;
         }
         out.iterations += 1;
-        // Predicted decrease of the merit by the QP model: m(0) − m(d).
-        let c = work.qp.cols;
-        let model = |x: &[f64], qp: &PostureQp| -> f64 {
-            let mut px = vec![0.0; c.n_var];
-            qp.p_times(x, &mut px);
-            (0..c.n_var).map(|i| 0.5 * px[i] * x[i] + qp.q[i] * x[i]).sum()
-        };
-        let pred = (model(&work.x0, &work.qp) - model(&work.qp.x, &work.qp)).max(0.0);
+        // Predicted decrease of the ℓ1 merit by the QP's model: the objective's quadratic model
+        // (posture and torque variables) plus the penalties times the fall of the linearised
+        // violations (the QP's slacks) from their values now.
+        let pred = predicted_decrease(work, &m0);
         // the step box: the whole step scaled (its direction kept), then the limits' far sides
         let scale = (0..n)
             .map(|k| work.qp.x[k].abs() / step_box(s, task.model.q_joint(k).kind))
@@ -688,15 +728,25 @@ pub fn solve_phase(
                 work.q_trial[k] = q[k] + alpha * d[k];
             }
             let mut trial = std::mem::take(&mut work.q_trial);
-            // Second-order correction, iterated: back onto the curved targets and feet, and out
-            // of any clearance or balance constraint the step crossed.
-            restore(task, scene, pw, &prob.targets_m, &mut trial, work.settings.contact_horizon_m);
-            let m1 = merit(task, scene, pw, work, prob, &trial);
+            let enough = |m1: &Merit| m1.phi <= m0.phi - 1e-4 * alpha * pred || (pred <= 1e-14 && m1.phi < m0.phi);
+            let mut m1 = merit(task, scene, pw, work, prob, &trial);
+            if !enough(&m1) {
+                // Second-order correction: back onto the curved targets and feet, and out of any
+                // clearance or balance constraint the step crossed.
+                let plain = trial.clone();
+                restore(task, scene, pw, &prob.targets_m, &mut trial, work.settings.contact_horizon_m);
+                let m2 = merit(task, scene, pw, work, prob, &trial);
+                if m2.phi < m1.phi {
+                    m1 = m2;
+                } else {
+                    trial.copy_from_slice(&plain);
+                }
+            }
             work.q_trial = trial;
             if std::env::var("SQP_DEBUG").is_ok() {
                 eprintln!("    alpha {alpha:.3e}: actual {:.4e} vs pred {:.4e} (dj {:.3e} eq {:.2e})", m0.phi - m1.phi, alpha * pred, m0.j - m1.j, m1.eq_inf);
             }
-            if m1.phi <= m0.phi - 1e-4 * alpha * pred || (pred <= 1e-14 && m1.phi <= m0.phi) {
+            if enough(&m1) {
                 q.copy_from_slice(&work.q_trial);
                 m0 = m1;
                 accepted = true;
@@ -716,6 +766,14 @@ pub fn solve_phase(
                 let c = work.qp.cols;
                 let mut idx: Vec<usize> = (0..c.e).collect();
                 idx.sort_by(|a, b| work.stat[*b].abs().total_cmp(&work.stat[*a].abs()));
+                let mut at_x = vec![0.0; c.n_var];
+                work.qp.stationarity(&work.qp.x.clone(), &mut at_x);
+                let nn = work.qp.sizes.n;
+                let dmax = (0..nn).map(|k| (work.qp.p_dq[k * nn + k], task.model.q_joint(k).name.clone())).fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a });
+                eprintln!("  P_dq largest diagonal {:?}", dmax);
+                let zi = (0..work.qp.z.len()).max_by(|a, b| work.qp.z[*a].abs().total_cmp(&work.qp.z[*b].abs())).unwrap_or(0);
+                eprintln!("  largest dual row {zi} (rows {:?})", work.qp.rows);
+                eprintln!("  stationarity at the QP's own solution: {:.3e}; z max {:.3e}", at_x.iter().fold(0.0f64, |m, v| m.max(v.abs())), work.qp.z.iter().fold(0.0f64, |m, v| m.max(v.abs())));
                 for &i in idx.iter().take(6) {
                     let what = if i < n { format!("dq {}", task.model.q_joint(i).name) } else if i < c.s_minus { format!("s+ {}", task.model.q_joint(scene.actuated[i - c.s_plus]).name) } else { format!("s- {}", task.model.q_joint(scene.actuated[i - c.s_minus]).name) };
                     eprintln!("  stat[{what}] = {:.3e}  x0 {:.3e} x* {:.3e} p {:.3e} q {:.3e}", work.stat[i], work.x0[i], work.qp.x[i], work.qp.p_diag[i], work.qp.q[i]);
@@ -755,7 +813,8 @@ pub fn restore(
     let mut worst = f64::INFINITY;
     let mut rows: Vec<(f64, Vec<f64>)> = Vec::with_capacity(24);
     let mut grad = vec![0.0; n];
-    for it in 0..8 {
+    let mut best = (f64::INFINITY, q.to_vec());
+    for it in 0..=8 {
         pw.statics(task, q, &zero);
         rows.clear();
         for h in 0..2 {
@@ -809,11 +868,14 @@ pub fn restore(
             return 0.0;
         }
         let w = rows.iter().fold(0.0f64, |m, r| m.max(r.0.abs()));
+        if w < best.0 {
+            best = (w, q.to_vec());
+        }
         if it >= 3 && w > worst * 0.5 {
-            return w.min(worst); // not converging (out of reach, or limits in the way)
+            break; // not converging (out of reach, or limits in the way)
         }
         worst = w;
-        if worst < 1e-13 {
+        if worst < 1e-13 || it == 8 {
             break;
         }
         let m = rows.len();
@@ -834,5 +896,8 @@ pub fn restore(
             q[k] = (q[k] + dq[k] / scale).clamp(j.lower_rad, j.upper_rad);
         }
     }
-    worst
+    // the last step is not checked above: keep the best posture seen
+    let _ = worst;
+    q.copy_from_slice(&best.1);
+    best.0
 }
