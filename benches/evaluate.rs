@@ -1,47 +1,28 @@
-//! Live evaluation: per-sample latency (parse a CSV line, statics, 20 exact fatigue updates,
-//! format the JSON line) for the default worker.
+//! Recorded work: per-sample cost of the evaluator (statics standing on both feet, every
+//! half-joint's exact fatigue update) for the generated whole-body worker.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use nalgebra::Vector3;
 use posture_opt::body::Worker;
-use posture_opt::evaluate::{parse_sample, Columns, EvalSetup, Sample};
-use posture_opt::fatigue::MaParams;
+use posture_opt::record::{default_setup, Evaluator, Sample};
+use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {
-    let setup = EvalSetup::from_robot(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf").as_ref(),
-        "hand_grip",
-        &Worker::MALE_50,
-        MaParams::new(1.0, 0.3).unwrap(),
-    )
-    .unwrap();
-    let header = "t_s,lumbar_flexion,lumbar_lateral_bending,lumbar_axial_rotation,r_shoulder_flexion,r_shoulder_abduction,r_shoulder_rotation,r_elbow_flexion,r_forearm_pronation,r_wrist_flexion,r_wrist_deviation,load_kg";
-    let cols = Columns::parse(header, &setup.model, false, "bench").unwrap();
-    let mut ev = setup.evaluator();
-    let mut s = Sample {
-        t_s: 0.0,
-        q_rad: vec![0.0; setup.model.nq()],
-        force_on_hand_n: nalgebra::Vector3::zeros(),
-    };
-    let mut out = String::with_capacity(2048);
-    let mut t = 0.0;
+    let task = default_setup(Worker::MALE_50, None).expect("default set-up");
+    let mut ev = Evaluator::new(&task);
+    let mut s = Sample::zeros(task.model.nq());
+    for (name, v) in [("lumbar_flexion", 0.3), ("r_shoulder_flexion", 1.1), ("r_elbow_flexion", 0.8)] {
+        if let Ok(k) = task.model.q_index(name) {
+            s.q_rad[k] = v;
+        }
+    }
+    s.hand_force_n[0] = Vector3::new(0.0, 0.0, -39.24);
     let mut g = c.benchmark_group("evaluate");
     g.throughput(Throughput::Elements(1));
-    g.bench_function("live_sample_parse_update_json", |b| {
+    g.bench_function("sample_statics_and_fatigue", |b| {
         b.iter(|| {
-            t += 0.01;
-            let line = format!("{t},0.3,-0.1,0.2,1.1,0.3,-0.2,0.8,0.4,-0.3,0.1,4.0");
-            parse_sample(
-                black_box(&line),
-                2,
-                &cols,
-                &setup.gravity_m_s2,
-                "bench",
-                &mut s,
-            )
-            .unwrap();
-            let n = ev.push(&s).unwrap();
-            ev.write_json_line(s.t_s, n, &mut out);
-            black_box(out.len())
+            s.t_s += 0.01;
+            black_box(ev.push(black_box(&s)).expect("valid sample"))
         })
     });
     g.finish();

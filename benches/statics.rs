@@ -1,39 +1,42 @@
-//! Forward kinematics + hand Jacobian + holding torques for the default worker (10 joints),
-//! and the analytic torque derivative.
+//! Statics of the generated whole-body worker: forward kinematics, hand Jacobians and holding
+//! torques with a load in each hand, and the analytic torque derivative. Compare with Pinocchio
+//! on the same URDF in the same run (see docs/body.md, "Speed").
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
 use posture_opt::body::{
-    holding_torque_derivative, holding_torques, BodyModel, StaticsData, GRAVITY_M_S2,
+    holding_torque_derivative, holding_torques, BodyModel, PointLoad, StaticsData, GRAVITY_M_S2,
 };
+use std::hint::black_box;
+
+fn setup() -> (BodyModel, Vec<f64>, Vec<PointLoad>) {
+    let m = BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
+        .expect("the shipped worker loads");
+    let mut q = vec![0.0; m.nq()];
+    for (name, v) in [
+        ("lumbar_flexion", 0.3),
+        ("r_shoulder_flexion", 1.1),
+        ("r_elbow_flexion", 0.8),
+        ("l_shoulder_flexion", 0.9),
+        ("l_elbow_flexion", 0.6),
+    ] {
+        q[m.q_index(name).expect("worker joint")] = v;
+    }
+    let f = Vector3::new(0.0, 0.0, -49.05);
+    let loads = ["r_hand_grip", "l_hand_grip"]
+        .iter()
+        .map(|h| PointLoad::force_at(m.frame_link(h).expect("worker hand"), f))
+        .collect();
+    (m, q, loads)
+}
 
 fn bench(c: &mut Criterion) {
-    let m = BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
-        .unwrap();
-    let mut d = StaticsData::new(&m);
-    let hand = m.frame_link("hand_grip").unwrap();
-    let q = [0.3, -0.1, 0.2, 1.1, 0.3, -0.2, 0.8, 0.4, -0.3, 0.1];
-    let f = Vector3::new(0.0, 0.0, -49.05);
-    c.bench_function("statics/worker_fk_jacobian_torques", |b| {
+    let (m, q, loads) = setup();
+    let mut d = StaticsData::new(&m, loads.len());
+    c.bench_function("statics/worker_two_hands_torques", |b| {
         b.iter(|| {
-            holding_torques(&m, &mut d, black_box(&q), hand, &f, &GRAVITY_M_S2);
+            holding_torques(&m, &mut d, black_box(&q), &loads, &GRAVITY_M_S2);
             black_box(d.tau_nm[0])
-        })
-    });
-    c.bench_function("statics/worker_fk_only", |b| {
-        b.iter(|| {
-            posture_opt::body::forward_kinematics(&m, &mut d, black_box(&q));
-            black_box(d.body_pos[3][0])
-        })
-    });
-    c.bench_function("statics/sin_cos_10", |b| {
-        b.iter(|| {
-            let mut s = 0.0;
-            for x in black_box(&q) {
-                let (a, c) = x.sin_cos();
-                s += a + c;
-            }
-            s
         })
     });
     c.bench_function("statics/worker_torque_derivative", |b| {

@@ -1,6 +1,5 @@
-//! Plans tasks/shelf.yaml from library code and prints the summary.
-use posture_opt::plan::plan_with_baseline;
-use posture_opt::task::Task;
+//! Plans tasks/shelf.yaml (or the task given) from library code and prints the summary.
+use posture_opt::plan::{plan_task, Task};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
@@ -8,36 +7,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or_else(|| concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf.yaml").to_string());
     let task = Task::from_file(&path)?;
     let t0 = std::time::Instant::now();
-    let (plan, baseline) = plan_with_baseline(&task, true)?;
-    let dt = t0.elapsed().as_secs_f64();
+    let plan = plan_task(&task)?;
+    let dt_s = t0.elapsed().as_secs_f64();
     println!(
-        "{}: {} steps, total U {:.3} min (baseline {:.3}), planned in {:.3} s ({:.0}x real time)",
+        "{}: {} steps, total U {:.3} min, planned in {:.1} s",
         plan.task,
-        plan.steps.len(),
+        plan.steps.t_s.len(),
         plan.summary.total_u,
-        baseline.summary.total_u,
-        dt,
-        task.duration_s() / dt
+        dt_s
     );
-    if std::env::var("PLAN_PROFILE").is_ok() {
-        let mut planner = posture_opt::plan::Planner::new(&task);
-        for adapt in [false, true] {
-            let t0 = std::time::Instant::now();
-            let p = planner.plan(adapt)?;
-            println!(
-                "  interior-point iterations so far: {}",
-                planner.ipm_iterations()
-            );
-            println!(
-                "adapt={adapt}: {:.3} s, {} QP solves, {} SQP iterations, {} replans",
-                t0.elapsed().as_secs_f64(),
-                p.summary.qp_solves,
-                p.summary.sqp_iterations,
-                p.summary.replans
-            );
-        }
-    } else {
-        println!("{}", serde_json::to_string_pretty(&plan.summary)?);
+    for b in &plan.summary.baselines {
+        println!("  {}: U {:.3} min ({:+.1} %)", b.name, b.total_u, 100.0 * b.change);
     }
     Ok(())
 }

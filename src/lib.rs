@@ -11,18 +11,21 @@
 //!
 //! # Planning from code
 //!
-//! ```
-//! use posture_opt::plan::plan_with_baseline;
-//! use posture_opt::task::Task;
+//! ```no_run
+//! use posture_opt::assess::assess;
+//! use posture_opt::plan::{plan_task, Task};
 //!
 //! let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
-//! let (plan, baseline) = plan_with_baseline(&task, true).unwrap();
-//! // an hour of work: 240 cycles of 3 phases and a rest, every step held at constant load
-//! assert_eq!(plan.steps.len(), 240 * 4);
-//! assert!((plan.summary.duration_s - 3600.0).abs() < 1e-9);
-//! // every target is reached within 1 cm, and adaptation lowers the total fatigue index
-//! assert!(plan.summary.phases.iter().all(|p| p.hand_error_m < 0.01));
-//! assert!(plan.summary.total_u < baseline.summary.total_u);
+//! let plan = plan_task(&task).unwrap();
+//! // every target is reached within 1 cm, and every phase's solve met its KKT test
+//! assert!(plan.summary.phases.iter().all(|p| p.hand_error_m < 0.01 && p.converged));
+//! // the plan against the naive baselines (same task, postures not optimised for fatigue)
+//! for b in &plan.summary.baselines {
+//!     println!("{}: U {:.1} min, change {:+.0} %", b.name, b.total_u, 100.0 * b.change);
+//! }
+//! // what an ergonomist reports: RULA/REBA, L5/S1 compression, % capable, work/rest
+//! let a = assess(&task, &plan, 0.7);
+//! println!("women capable: {:.0} %", 100.0 * a.capable_women);
 //! ```
 //!
 //! For repeated planning of one task, [`plan::Planner`] keeps its statics workspace, QP solver
@@ -30,32 +33,18 @@
 //!
 //! # Modules
 //! * [`fatigue`]: the Ma et al. model (+ recovery), the three-compartment model, Table 2's MET
-//!   models and the r / ICC statistics.
+//!   models, the r / ICC statistics, parameter sets and fitting to a user's data.
 //! * [`validation`]: the paper's static and dynamic validations, as data and SVG figures.
 //! * [`body`]: URDF body model, statics workspace (positions, Jacobians, holding torques and their
-//!   derivatives), half-joint strength, the generated worker.
+//!   derivatives, both feet on the floor), population strength, the generated whole-body worker.
 //! * [`workstation`]: obstacles and capsule clearances (parry3d).
-//! * [`task`]: task files → validated tasks.
-//! * [`optim`]: the per-phase sequential QP (clarabel).
-//! * [`plan`]: the planning loop and the `Plan` document; [`report`]: its summary, CSV and the
-//!   self-contained HTML report ([`report::html`]).
-//! * [`rula`]: RULA from a posture, with the worksheet; [`rest`]: work/rest advice (the model's
-//!   recovery against Rohmert's rule); [`compare`]: layouts ranked; [`sweep`]: populations.
-//!
-//! # Assessing a plan
-//!
-//! ```
-//! use posture_opt::{plan::plan_with_baseline, rest::rest_advice, task::Task};
-//!
-//! let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf_lowered.yaml")).unwrap();
-//! let (plan, _) = plan_with_baseline(&task, true).unwrap();
-//! // RULA per phase (the default worker body): grand scores 1-7
-//! let rula: Vec<i32> = plan.summary.phases.iter().map(|p| p.rula.as_ref().unwrap().grand_score).collect();
-//! assert!(rula.iter().all(|g| (1..=7).contains(g)));
-//! // with the boards lowered, the task's 6 s of rest per cycle keeps every capacity >= 0.7
-//! let rest = rest_advice(&task, &plan, 0.7);
-//! assert!(rest.model.rest_s_per_cycle.unwrap() <= task.rest_s);
-//! ```
+//! * [`plan`]: task files, the per-phase SQP (clarabel), multi-start, the planning loop and the
+//!   `Plan` document.
+//! * [`assess`]: RULA, REBA, NIOSH lifting, L5/S1 compression, % capable, work/rest advice and
+//!   the fatigue parameters' uncertainty.
+//! * [`study`]: layouts compared and population sweeps (with shards for big studies).
+//! * [`record`]: recorded work (CSV, OpenSim .mot/.sto) evaluated, offline or streaming.
+//! * [`report`]: text, CSV and the self-contained HTML report.
 
 pub mod assess;
 pub mod body;

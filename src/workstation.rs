@@ -196,12 +196,76 @@ impl Obstacle {
         )
         .ok()
         .flatten()?;
+        if c.dist <= 1e-9 {
+            if let ShapeSpec::Cylinder { radius_m: rc, height_m } = self.spec.shape {
+                // parry reports a capsule whose axis lies inside a cylinder as touching (depth 0):
+                // the depth is the deepest axis point's distance to the cylinder's surface (a
+                // concave function along the segment: ternary search), plus the radius.
+                return Some(self.capsule_in_cylinder(index, a, b, radius_m, rc, height_m, c));
+            }
+        }
         Some(Clearance {
             obstacle: index,
             distance_m: c.dist,
             normal: nv(c.normal1),
             point_m: nv(c.point1),
         })
+    }
+
+    /// Clearance of a capsule that penetrates the cylinder (radius `rc`, height `h`).
+    #[allow(clippy::too_many_arguments)]
+    fn capsule_in_cylinder(
+        &self,
+        index: usize,
+        a: &Vector3<f64>,
+        b: &Vector3<f64>,
+        radius_m: f64,
+        rc: f64,
+        h: f64,
+        touching: parry3d_f64::query::Contact,
+    ) -> Clearance {
+        let world_from_cyl = self.world_from_obstacle();
+        // depth of a world point inside the cylinder (negative outside) and the outward normal
+        // of the nearest face
+        let depth = |p: &Vector3<f64>| -> (f64, Vector3<f64>) {
+            let l = world_from_cyl.inverse_transform_point(&nalgebra::Point3::from(*p)).coords;
+            let r = (l.x * l.x + l.y * l.y).sqrt();
+            let side = rc - r;
+            let cap = 0.5 * h - l.z.abs();
+            let local_n = if side < cap {
+                if r > 1e-12 { Vector3::new(l.x / r, l.y / r, 0.0) } else { Vector3::x() }
+            } else {
+                Vector3::new(0.0, 0.0, l.z.signum())
+            };
+            (side.min(cap), world_from_cyl.rotation * local_n)
+        };
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..60 {
+            let m1 = lo + (hi - lo) / 3.0;
+            let m2 = hi - (hi - lo) / 3.0;
+            if depth(&(a + (b - a) * m1)).0 < depth(&(a + (b - a) * m2)).0 {
+                lo = m1;
+            } else {
+                hi = m2;
+            }
+        }
+        let p = a + (b - a) * (0.5 * (lo + hi));
+        let (d, outward) = depth(&p);
+        if d <= 0.0 {
+            // the axis stays outside: parry's touching contact stands
+            return Clearance {
+                obstacle: index,
+                distance_m: touching.dist,
+                normal: nv(touching.normal1),
+                point_m: nv(touching.point1),
+            };
+        }
+        Clearance {
+            obstacle: index,
+            distance_m: -d - radius_m,
+            normal: -outward,
+            point_m: p - outward * radius_m,
+        }
     }
 }
 
@@ -215,6 +279,24 @@ impl Obstacle {
         half_extents_m: &Vector3<f64>,
         within_m: f64,
     ) -> Option<Clearance> {
+        if let Some((p0, n)) = &self.plane {
+            // The corner deepest toward the plane: centre offset minus the half extents
+            // projected on the normal.
+            let r = world_from_box.rotation;
+            let centre = world_from_box.translation.vector;
+            let mut corner = centre;
+            for i in 0..3 {
+                let axis = r * Vector3::ith(i, 1.0);
+                corner -= axis * (axis.dot(n).signum() * half_extents_m[i]);
+            }
+            let distance_m = n.dot(&(corner - p0));
+            return (distance_m <= within_m).then(|| Clearance {
+                obstacle: index,
+                distance_m,
+                normal: -n,
+                point_m: corner,
+            });
+        }
         let t = world_from_box.translation.vector;
         let q = world_from_box.rotation;
         let pose = Pose::from_parts(

@@ -103,7 +103,13 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
             eu += h * E[i] * ku[i];
         }
         let err = (ey.abs() / (1e-13 * (1.0 + y.abs()))).max(eu.abs() / (1e-300 + RTOL * u5.abs()));
-        if !err.is_finite() {
+        // U's rate now, held for the time left, already passes 1e306 (the rate only grows
+        // while capacity falls): U overflows.
+        if du(y) * (t_min - t) > 1e306 && dy(y) <= 0.0 {
+            return Integrated { capacity: y.exp(), du_min: u, overflow: true };
+        }
+        // (f64::max drops a NaN, so a step whose U overflowed must be rejected explicitly.)
+        if !err.is_finite() || !u5.is_finite() {
             h *= 0.2;
             continue;
         }
@@ -138,12 +144,12 @@ fn k_strategy() -> impl Strategy<Value = f64> {
     ]
 }
 
-/// A recovery rate in 0..=R_MAX: zero, uniform, log-uniform down to 1e−6, the maximum.
+/// A recovery rate in 0..=R_MAX: zero, uniform, log-uniform down to 1e−30, the maximum.
 fn r_strategy() -> impl Strategy<Value = f64> {
     prop_oneof![
         Just(0.0),
         0.0..=R_MAX_PER_MIN,
-        (-6.0..R_MAX_PER_MIN.log10()).prop_map(|e: f64| 10f64.powf(e)),
+        (-30.0..R_MAX_PER_MIN.log10()).prop_map(|e: f64| 10f64.powf(e)),
         Just(R_MAX_PER_MIN),
     ]
 }
@@ -159,13 +165,16 @@ fn recovery_strategy() -> impl Strategy<Value = Recovery> {
     ]
 }
 
-/// Loads 0..1, tiny ones (down to 1e−15) and the ends.
+/// Loads 0..1, tiny ones (down to 1e−15), the ends, and loads above MVC (up to 10×: `hold`
+/// takes any finite f ≥ 0; the boundary checks f ≤ 1; far larger ones only make the reference
+/// integrator's job impossible, not the closed form's).
 fn load_strategy() -> impl Strategy<Value = f64> {
     prop_oneof![
-        Just(0.0),
-        Just(1.0),
-        0.0..=1.0,
-        (-15.0f64..0.0).prop_map(|e| 10f64.powf(e)),
+        3 => Just(0.0),
+        3 => Just(1.0),
+        10 => 0.0..=1.0,
+        6 => (-15.0f64..0.0).prop_map(|e| 10f64.powf(e)),
+        2 => (0.0f64..1.0).prop_map(|e| 10f64.powf(e)),
     ]
 }
 
@@ -215,7 +224,7 @@ fn check_hold(p: &MaParams, f: f64, dt_s: f64, c0: f64, u0: f64) -> Result<(), S
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 5000, failure_persistence: None, ..ProptestConfig::default() })]
 
     /// Capacity and U after one hold equal the integration: holds of 1 ms to 48 h, every
     /// recovery form, k and R across their documented ranges, loads 0..1 and tiny ones.
@@ -225,17 +234,20 @@ proptest! {
         dt_s in hold_s_strategy(), c0 in c0_strategy(), u0 in prop_oneof![Just(0.0), 0.0f64..100.0],
     ) {
         let p = MaParams::with_recovery(k, rec).unwrap();
+        // Loads above MVC (unreachable from inputs, which are checked to f ≤ 1) with recovery
+        // make the ODE too stiff for the explicit reference integrator (λ up to 2e7/min).
+        prop_assume!(f <= 1.0 || rate(&p.recovery, f) == 0.0);
         if let Err(e) = check_hold(&p, f, dt_s, c0, u0) {
             return Err(TestCaseError::fail(format!("{p:?} f={f} dt={dt_s} s c0={c0} u0={u0}: {e}")));
         }
     }
 
     /// Perfusion recovery just below its limit load, where R(f) ≈ 3 R_rest (1 − f/f_lim)² is
-    /// tiny but not zero.
+    /// tiny but not zero (1 − f/f_lim from 1e−9 to 0.1).
     #[test]
     fn hold_matches_integration_near_the_limit_load(
         k in k_strategy(), rest in 0.01f64..=R_MAX_PER_MIN, lim in 0.01f64..=1.0,
-        gap in -6.0f64..-1.0, dt_s in hold_s_strategy(), c0 in c0_strategy(),
+        gap in -9.0f64..-1.0, dt_s in hold_s_strategy(), c0 in c0_strategy(),
     ) {
         let f = lim * (1.0 - 10f64.powf(gap));
         let p = MaParams::with_recovery(k, Recovery::Perfusion { rest_per_min: rest, limit_fmvc: lim }).unwrap();
@@ -557,8 +569,7 @@ proptest! {
 
     /// The same over the whole domain, slow transients included.
     #[test]
-    #[ignore = "BUG: repeated_cycles' Euler-Maclaurin tail (L < 0.2 per cycle) misses the documented 1.2e-5 accuracy when capacity falls far toward c* (see slow_transient_cycles_match_explicit_holds)"]
-    fn repeated_cycles_equal_explicit_holds_everywhere(
+        fn repeated_cycles_equal_explicit_holds_everywhere(
         k in k_strategy(), rec in recovery_strategy(), steps in cycle_strategy(),
         c0 in c0_strategy(), n in (0.0f64..5.0).prop_map(|e| 10f64.powf(e).round() as u64),
     ) {
@@ -669,7 +680,6 @@ fn paper_model_long_shift_in_scaled_form() {
 /// and adds `(e^{2x} − 1)/(2k c²)`; here x = k f t = 20 · 1 · 30 = 600, so the first cycle
 /// alone gives U = (e^{1200} − 1)/40, ln U = 1200 − ln 40.
 #[test]
-#[ignore = "BUG: repeated_cycles returns U = 1e300 with ln_scale 0 (a wrong finite value) when U overflows in a cycle with recovery"]
 fn mixed_cycle_overflow_is_scaled_not_saturated() {
     let p = MaParams::with_recovery(20.0, Recovery::Perfusion { rest_per_min: 0.37, limit_fmvc: 0.085 }).unwrap();
     let steps = [HeldStep { f: 1.0, t_min: 30.0 }, HeldStep { f: 0.0, t_min: 1.0 }];
@@ -715,7 +725,6 @@ fn cycle_derivatives_match_finite_differences_of_explicit_holds() {
 /// Case 2 (perfusion, a load just below its limit, R(f) ≈ 4e−6): k = 0.35, R_rest = 0.85,
 /// f = 0.0849, 1.5 s per cycle, 6643 cycles.
 #[test]
-#[ignore = "BUG: repeated_cycles' Euler-Maclaurin tail is inaccurate when c* is far below the capacities of the transient"]
 fn slow_transient_cycles_match_explicit_holds() {
     let cases = [
         (MaParams::new(3.0, 0.075).unwrap(), vec![(0.75, 0.0068)], 270u64),
@@ -742,7 +751,6 @@ fn slow_transient_cycles_match_explicit_holds() {
 /// `(e^{2kft} − 1)/2k`. Past λt = 30 the closed form's equilibrium branch cancels
 /// catastrophically.
 #[test]
-#[ignore = "BUG: MaParams::hold returns a wrong U (x1e11, or 0) for a tiny recovery rate once λt > 30"]
 fn tiny_recovery_rate_long_hold() {
     let cases = [
         (MaParams::new(1.0, 1e-30).unwrap(), 1.0, 40.0),

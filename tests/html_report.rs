@@ -328,6 +328,22 @@ fn assert_sound(html: &str) {
 }
 
 #[test]
+fn the_checks_catch_what_they_look_for() {
+    let fails = |f: fn()| std::panic::catch_unwind(f).is_err();
+    assert!(fails(|| assert_well_formed("<div><p></div>")));
+    assert!(fails(|| assert_well_formed("<section><div></div>")));
+    assert!(fails(|| assert_well_formed("</td>")));
+    assert_well_formed("<div><br><svg><rect x=\"1\"/></svg><style>a>b{}</style></div>");
+    assert!(fails(|| assert_no_bad_numbers("<td>1.5 inf</td>")));
+    assert!(fails(|| assert_no_bad_numbers("x=\"-inf\"")));
+    assert!(fails(|| assert_no_bad_numbers("<td>NaN</td>")));
+    assert_no_bad_numbers("information, infeasible, Buchanan");
+    assert!(fails(|| assert_self_contained(
+        "<!DOCTYPE html><img src=\"x.png\"></html>"
+    )));
+}
+
+#[test]
 fn plan_report_is_self_contained_well_formed_and_complete() {
     let p = planned();
     let html = plan_html();

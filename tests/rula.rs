@@ -607,6 +607,44 @@ fn worksheet_steps_in_order() {
     assert_eq!(main, (1..=15).collect::<Vec<u32>>());
 }
 
+/// Non-finite input never panics and always gives a grand score in 1–7.
+#[test]
+fn non_finite_input_does_not_panic() {
+    for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -1e300, 1e300] {
+        let mut ps = Vec::new();
+        for i in 0..11 {
+            let mut p = neutral();
+            match i {
+                0 => p.upper_arm_flexion_deg = x,
+                1 => p.upper_arm_abduction_deg = x,
+                2 => p.elbow_flexion_deg = x,
+                3 => p.wrist_flexion_deg = x,
+                4 => p.wrist_deviation_deg = x,
+                5 => p.wrist_twist_fraction = x,
+                6 => p.trunk_flexion_deg = x,
+                7 => p.trunk_twist_deg = x,
+                8 => p.trunk_side_bend_deg = x,
+                9 => p.neck_flexion_deg = x,
+                _ => p.neck_twist_deg = x,
+            }
+            ps.push(p);
+        }
+        for p in &ps {
+            for a in [
+                IDLE,
+                RulaActivity {
+                    load_kg: x,
+                    held_s: x,
+                    repeats_per_min: x,
+                },
+            ] {
+                let r = score(p, &a);
+                assert!((1..=7).contains(&r.grand_score), "{p:?} {a:?}");
+            }
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Both arms (paper: "only the right or left side is assessed at a time … if undecided, the
 // observer would assess both sides")

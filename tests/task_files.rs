@@ -1,17 +1,16 @@
-//! Task files: errors name the file, the line/column or field, and what is wrong; an out-of-reach
-//! target gives the nearest reachable posture and the plan says so.
+//! Task files (`posture_opt::plan::task`): a minimal task loads with the generated worker; every
+//! refusal names the file, the line or field, and what is wrong; an out-of-reach target gives
+//! the nearest posture and the plan says so.
 
-use posture_opt::plan::plan_with_baseline;
-use posture_opt::task::Task;
-use std::path::PathBuf;
+mod common;
 
-fn write(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("posture-opt-tasks-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
+use common::{tempdir, write};
+use nalgebra::{Point3, Vector3};
+use posture_opt::body::{forward_kinematics, StaticsData};
+use posture_opt::plan::{plan_task_with, PlanOptions, Task};
+
+/// Earth's gravity \[m/s²\], the documented default (0, 0, −9.81).
+const G: f64 = 9.81;
 
 const BASE: &str = "name: t
 worker: {sex: male, stature_m: 1.755, mass_kg: 78.0}
@@ -25,107 +24,249 @@ cycles: 10
 ";
 
 #[test]
-fn a_minimal_task_loads_with_a_generated_body() {
-    let t = Task::from_file(write("ok.yaml", BASE)).unwrap();
+fn a_minimal_task_loads_with_the_generated_worker() {
+    let dir = tempdir();
+    let t = Task::from_file(write(dir.path(), "ok.yaml", BASE)).unwrap();
     assert_eq!(t.robot, "generated from worker");
-    assert_eq!(t.half_joints.len(), 20);
+    assert_eq!(t.name, "t");
+    assert_eq!((t.worker.stature_m, t.worker.mass_kg, t.worker.strength_percentile), (1.755, 78.0, 50.0));
+    // the body weighs what the worker weighs (segment masses printed to 0.1 g in the URDF)
+    let mass: f64 = t.model.links.iter().map(|l| l.mass_kg).sum();
+    assert!((mass - 78.0).abs() < 0.01, "body mass {mass}");
+    // the floating pelvis has no muscles; every other moving joint has two half-joints
+    let names = t.joint_names();
+    let pelvis: Vec<usize> = (0..names.len()).filter(|&k| names[k].starts_with("pelvis_")).collect();
+    assert_eq!(pelvis.len(), 6);
+    let mut unactuated = t.unactuated.clone();
+    unactuated.sort();
+    assert_eq!(unactuated, pelvis);
+    assert_eq!(t.half_joints.len(), 2 * (names.len() - 6));
+    for (k, n) in names.iter().enumerate() {
+        for sign in ["+", "-"] {
+            let present = t.half_joints.iter().any(|h| h.id == format!("{n}{sign}"));
+            assert_eq!(present, !pelvis.contains(&k), "{n}{sign}");
+        }
+    }
+    // it stands on both feet, flat on the floor, the sole centres a shoulder width apart
+    // (documented default: 0.21 × stature)
+    let st = t.stance.as_ref().expect("the generated worker stands");
+    let soles: Vec<Vector3<f64>> = (0..2)
+        .map(|i| (st.world_from_foot[i] * Point3::from(st.feet[i].sole_center_in_link_m)).coords)
+        .collect();
+    assert!((soles[0].y - soles[1].y - 0.21 * 1.755).abs() < 1e-9, "{soles:?}");
+    assert!(soles.iter().all(|s| s.z.abs() < 1e-9 && s.x.abs() < 1e-9), "{soles:?}");
+    // hands, the phase and the timing
+    assert_eq!(t.hand_links[0].as_ref().map(|h| h.1.as_str()), Some("r_hand_grip"));
+    assert_eq!(t.hand_links[1].as_ref().map(|h| h.1.as_str()), Some("l_hand_grip"));
+    let ph = &t.phases[0];
+    assert_eq!(ph.targets_m, [Some(Vector3::new(0.35, -0.2, 1.0)), None]);
+    assert!((ph.hand_force_n[0] - Vector3::new(0.0, 0.0, -2.0 * G)).norm() < 1e-12);
+    assert_eq!(ph.hand_force_n[1], Vector3::zeros());
+    assert_eq!((t.cycles, t.rest_s), (10, 5.0));
     assert!((t.cycle_s() - 10.0).abs() < 1e-12);
-    assert!((t.phases[0].hand_force_n.z + 2.0 * 9.81).abs() < 1e-12);
+    assert!((t.duration_s() - 100.0).abs() < 1e-12);
+    // the documented default fatigue parameter set
+    assert_eq!(t.fatigue_choice.set, "default-2026");
+    assert_eq!(t.fatigue.len(), t.half_joints.len());
 }
 
 #[test]
-fn errors_name_file_and_place() {
-    let e = Task::from_file(write(
-        "unknown.yaml",
-        &BASE.replace("rest_s: 5.0", "rest_s: 5.0\nresting: 3"),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.contains("unknown.yaml") && e.contains("resting") && e.contains("line 9"),
-        "{e}"
+fn an_object_in_both_hands_splits_targets_and_load() {
+    let dir = tempdir();
+    let text = BASE.replace(
+        "target_m: [0.35, -0.2, 1.0], load_kg: 2.0",
+        "object: {center_m: [0.45, 0.0, 1.0], grip_width_m: 0.4}, load_kg: 6.0",
     );
-    let e = Task::from_file(write(
-        "neg.yaml",
-        &BASE.replace("duration_s: 5.0", "duration_s: -5.0"),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.contains("neg.yaml") && e.contains("phases[0] (hold).duration_s") && e.contains("-5"),
-        "{e}"
-    );
-    let e = Task::from_file(write(
-        "nan.yaml",
-        &BASE.replace("load_kg: 2.0", "load_kg: .nan"),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("load_kg"), "{e}");
-    let e = Task::from_file(write("robot.yaml", &format!("robot: nowhere.urdf\n{BASE}")))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("robot") && e.contains("nowhere.urdf"), "{e}");
-    let e = Task::from_file(write("frame.yaml", &format!("hand_frame: nose\n{BASE}")))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("hand_frame") && e.contains("nose"), "{e}");
-    let e = Task::from_file(write(
-        "box.yaml",
-        &BASE.replace(
-            "{name: floor, plane: {normal: [0, 0, 1]}}",
-            "{name: shelf, box: {size_m: [0.4, 0, 0.02]}}",
-        ),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.contains("workstation.obstacles") && e.contains("shelf") && e.contains("size_m"),
-        "{e}"
-    );
-    let e = Task::from_file(write(
-        "cycles.yaml",
-        &BASE.replace("cycles: 10", "cycles: 0"),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("cycles"), "{e}");
-    let e = Task::from_file(write(
-        "k.yaml",
-        &format!("{BASE}fatigue: {{k_per_min: -1}}\n"),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("fatigue.k_per_min"), "{e}");
-    let e = Task::from_file(write(
-        "ov.yaml",
-        &format!("{BASE}fatigue: {{overrides: {{knee: {{k_per_min: 2}}}}}}\n"),
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("fatigue.overrides.knee"), "{e}");
-    let e = Task::from_file("/nonexistent/task.yaml")
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("/nonexistent/task.yaml"), "{e}");
+    let t = Task::from_file(write(dir.path(), "box.yaml", text)).unwrap();
+    let ph = &t.phases[0];
+    // the hands a grip width apart along y, the left one on +y, each carrying half the load
+    assert_eq!(ph.targets_m, [Some(Vector3::new(0.45, -0.2, 1.0)), Some(Vector3::new(0.45, 0.2, 1.0))]);
+    for h in 0..2 {
+        assert!((ph.hand_force_n[h] - Vector3::new(0.0, 0.0, -3.0 * G)).norm() < 1e-12, "{:?}", ph.hand_force_n);
+    }
+}
+
+/// Loads `text` as `name` in a fresh directory; the message must name the file and contain
+/// every needle.
+fn refused(name: &str, text: &str, needles: &[&str]) {
+    let dir = tempdir();
+    let p = write(dir.path(), name, text);
+    let e = match Task::from_file(&p) {
+        Ok(_) => panic!("{name}: accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.starts_with(&p.display().to_string()), "{name}: the message does not start with the file:\n{e}");
+    for n in needles {
+        assert!(e.contains(n), "{name}: the message does not contain '{n}':\n{e}");
+    }
 }
 
 #[test]
-fn out_of_reach_target_gives_nearest_posture_and_says_so() {
-    let t = Task::from_file(write(
-        "far.yaml",
-        &BASE.replace("[0.35, -0.2, 1.0]", "[1.5, -0.2, 1.0]"),
-    ))
-    .unwrap();
-    let (p, _) = plan_with_baseline(&t, true).unwrap();
+fn syntax_and_unknown_fields_are_located_by_line_and_column() {
+    // line 9 is the new field, column 1
+    refused("unknown.yaml", &BASE.replace("rest_s: 5.0", "rest_s: 5.0\nresting: 3"), &["line 9 column 1", "unknown field", "resting"]);
+    // inside a phase's flow mapping: line 7, the column where `lod_kg` starts
+    let text = BASE.replace("duration_s: 5.0}", "duration_s: 5.0, lod_kg: 3}");
+    let col = text.lines().nth(6).unwrap().find("lod_kg").unwrap() + 1;
+    refused("phase_field.yaml", &text, &[&format!("line 7 column {col}"), "unknown field", "lod_kg"]);
+    // an unknown worker field, a misspelt variant
+    refused("worker_field.yaml", &BASE.replace("mass_kg: 78.0}", "mass_kg: 78.0, age: 40}"), &["line 2", "age"]);
+    refused("sex.yaml", &BASE.replace("sex: male", "sex: mail"), &["line 2 column 15", "mail", "male", "female"]);
+    // a missing required field, a wrong type, broken YAML
+    refused("no_duration.yaml", &BASE.replace(", duration_s: 5.0", ""), &["line 7", "missing field", "duration_s"]);
+    refused("cycles_word.yaml", &BASE.replace("cycles: 10", "cycles: ten"), &["line 9 column 9"]);
+    refused("bracket.yaml", &BASE.replace("cycles: 10", "cycles: [10"), &["line 9"]);
+    // an unreadable file
+    let dir = tempdir();
+    let missing = dir.path().join("absent.yaml");
+    let e = Task::from_file(&missing).unwrap_err().to_string();
+    assert!(e.starts_with(&missing.display().to_string()) && e.contains("cannot read"), "{e}");
+}
+
+#[test]
+fn values_are_refused_with_the_field_and_the_value() {
+    let phase = "phases[0] (hold)";
+    // worker ranges (documented: stature 1.2..2.3 m, mass 30..200 kg, percentile 1..99)
+    refused("tall.yaml", &BASE.replace("stature_m: 1.755", "stature_m: 2.5"), &["worker", "stature_m", "1.2", "2.3", "got 2.5"]);
+    refused("short.yaml", &BASE.replace("stature_m: 1.755", "stature_m: 0.9"), &["worker", "stature_m", "got 0.9"]);
+    refused("light.yaml", &BASE.replace("mass_kg: 78.0", "mass_kg: 20"), &["worker", "mass_kg", "got 20"]);
+    refused("pct.yaml", &BASE.replace("mass_kg: 78.0}", "mass_kg: 78.0, strength_percentile: 100}"), &["worker", "strength_percentile", "got 100"]);
+    // durations, targets, loads
+    refused("neg.yaml", &BASE.replace("duration_s: 5.0", "duration_s: -5.0"), &[&format!("{phase}.duration_s"), "> 0", "got -5"]);
+    refused("zero.yaml", &BASE.replace("duration_s: 5.0", "duration_s: 0"), &[&format!("{phase}.duration_s"), "got 0"]);
+    refused("target_nan.yaml", &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, .nan, 1.0]"), &[&format!("{phase}.target_m"), "finite", "NaN"]);
+    refused("target_inf.yaml", &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, .inf]"), &[&format!("{phase}.target_m"), "finite", "inf"]);
+    refused("target_far.yaml", &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 5000]"), &[&format!("{phase}.target_m"), "5000"]);
+    refused("no_target.yaml", &BASE.replace("target_m: [0.35, -0.2, 1.0], ", ""), &[&format!("{phase}.target_m"), "exactly one"]);
+    refused("load_nan.yaml", &BASE.replace("load_kg: 2.0", "load_kg: .nan"), &[&format!("{phase}.load_kg"), "NaN"]);
+    refused("load_neg.yaml", &BASE.replace("load_kg: 2.0", "load_kg: -2"), &[&format!("{phase}.load_kg"), "got -2"]);
+    refused("both.yaml", &BASE.replace("load_kg: 2.0", "load_kg: 2.0, hand_force_n: [0, 0, -10]"), &[&format!("{phase}.load_kg"), "hand_force_n", "not both"]);
+    refused("force_nan.yaml", &BASE.replace("load_kg: 2.0", "hand_force_n: [0, .nan, -10]"), &[&format!("{phase}.hand_force_n"), "finite"]);
+    refused("share.yaml", &BASE.replace("load_kg: 2.0", "load_kg: 2.0, left_share: 0.3"), &[&format!("{phase}.left_share"), "two-handed"]);
+    let object = BASE.replace("target_m: [0.35, -0.2, 1.0]", "object: {center_m: [0.4, 0, 1.0], grip_width_m: 5}");
+    refused("grip.yaml", &object, &[&format!("{phase}.object.grip_width_m"), "got 5"]);
+    refused("no_phases.yaml", &BASE.replace("phases:\n  - {name: hold, target_m: [0.35, -0.2, 1.0], load_kg: 2.0, duration_s: 5.0}", "phases: []"), &["phases", "at least one"]);
+    // cycles, rest, the task's length
+    refused("cycles.yaml", &BASE.replace("cycles: 10", "cycles: 0"), &["cycles", "at least 1"]);
+    refused("rest.yaml", &BASE.replace("rest_s: 5.0", "rest_s: -1"), &["rest_s", "got -1"]);
+    let steps = posture_opt::plan::task::MAX_STEPS;
+    refused("steps.yaml", &BASE.replace("cycles: 10", &format!("cycles: {steps}")), &["cycles", &steps.to_string()]);
+    refused("year.yaml", &BASE.replace("duration_s: 5.0", "duration_s: 3.0e7"), &["cycles", "year"]);
+    // body, frames, stance, gravity
+    refused("robot.yaml", &format!("robot: nowhere.urdf\n{BASE}"), &["robot", "nowhere.urdf"]);
+    refused("frame.yaml", &format!("hand_frame: nose\n{BASE}"), &["hand_frame", "'nose'", "not a link"]);
+    refused("stance.yaml", &format!("{BASE}stance: {{width_m: 3}}\n"), &["stance.width_m", "got 3"]);
+    refused("toe.yaml", &format!("{BASE}stance: {{toe_out_deg: 60}}\n"), &["stance.toe_out_deg", "got 60"]);
+    refused("gravity.yaml", &format!("{BASE}gravity_m_s2: [0, 0, -100]\n"), &["gravity_m_s2", "-100"]);
+    refused("box.yaml", &BASE.replace("{name: floor, plane: {normal: [0, 0, 1]}}", "{name: shelf, box: {size_m: [0.4, 0, 0.02]}}"), &["workstation.obstacles", "'shelf'", "size_m"]);
+    // fatigue: rates, names of regions, half-joints and sets
+    refused("k.yaml", &format!("{BASE}fatigue: {{k_per_min: -1}}\n"), &["fatigue.k_per_min", "got -1"]);
+    refused("r.yaml", &format!("{BASE}fatigue: {{recovery_per_min: 50}}\n"), &["fatigue.recovery_per_min", "got 50"]);
+    refused("limit.yaml", &format!("{BASE}fatigue: {{recovery: {{rest_per_min: 0.4, limit_fmvc: 2}}}}\n"), &["fatigue.recovery", "got 2"]);
+    refused("region.yaml", &format!("{BASE}fatigue: {{overrides: {{kneee: {{k_per_min: 2}}}}}}\n"), &["fatigue.overrides.kneee", "did you mean 'knee'"]);
+    // an unknown joint in a half-joint id
+    refused("half_joint.yaml", &format!("{BASE}fatigue: {{overrides: {{r_elbow_flexon+: {{k_per_min: 2}}}}}}\n"), &["fatigue.overrides.r_elbow_flexon+", "half-joint id"]);
+    refused("override_k.yaml", &format!("{BASE}fatigue: {{overrides: {{knee: {{k_per_min: 100}}}}}}\n"), &["fatigue.overrides.knee.k_per_min", "got 100"]);
+    refused("set.yaml", &format!("{BASE}fatigue: {{parameters: ma2010}}\n"), &["fatigue.parameters", "'ma2010'", "ma2009"]);
+    // lifts name phases; the optimiser's settings and re-planning have ranges
+    refused("lift.yaml", &format!("{BASE}lifts: [{{name: l, origin: hold, destination: hodl}}]\n"), &["lifts[0] (l).destination", "'hodl'", "did you mean 'hold'"]);
+    refused("clearance.yaml", &format!("{BASE}objective: {{clearance_m: 2}}\n"), &["objective.clearance_m", "got 2"]);
+    refused("replan.yaml", &format!("{BASE}replan: {{every_cycles: 0}}\n"), &["replan.every_cycles"]);
+    refused("tolerance.yaml", &format!("{BASE}replan: {{capacity_tolerance: 1.5}}\n"), &["replan.capacity_tolerance", "got 1.5"]);
+}
+
+/// The task of the out-of-reach tests: one right-hand phase with the target `x_m` ahead.
+fn far_task(x_m: f64) -> Task {
+    let text = BASE
+        .replace("[0.35, -0.2, 1.0]", &format!("[{x_m}, -0.2, 1.0]"))
+        .replace("cycles: 10", "cycles: 2");
+    Task::from_yaml_str(&text, std::path::Path::new("far.yaml")).unwrap()
+}
+
+/// Position of the right hand's grip at posture `q`.
+fn grip(t: &Task, q: &[f64]) -> Vector3<f64> {
+    let m = &t.model;
+    let mut d = StaticsData::new(m, 0);
+    forward_kinematics(m, &mut d, q);
+    d.link_point(m, t.hand_links[0].as_ref().unwrap().0, &Vector3::zeros())
+}
+
+fn plan(t: &Task) -> posture_opt::plan::Plan {
+    let opts = PlanOptions {
+        baselines: false,
+        ..Default::default()
+    };
+    plan_task_with(t, opts).unwrap()
+}
+
+#[test]
+fn a_target_out_of_reach_gives_the_nearest_posture_and_says_so() {
+    let target = Vector3::new(2.5, -0.2, 1.0);
+    let t = far_task(target.x);
+    let m = &t.model;
+    // How far can the right hand get from the right ankle? The chain ankle → knee → hip →
+    // lumbar joint → shoulder → elbow → wrist → grip is made of rigid pieces, so at most the
+    // sum of the distances between successive joint centres (taken at any posture).
+    let mut d = StaticsData::new(m, 0);
+    let zero = vec![0.0; m.nq()];
+    forward_kinematics(m, &mut d, &zero);
+    let centre = |j: &str| d.origin_w[m.q_index(j).unwrap()];
+    let chain = [
+        centre("r_ankle_dorsiflexion"),
+        centre("r_knee_flexion"),
+        centre("r_hip_flexion"),
+        centre("lumbar_flexion"),
+        centre("r_shoulder_flexion"),
+        centre("r_elbow_flexion"),
+        centre("r_wrist_flexion"),
+        grip(&t, &zero),
+    ];
+    let reach: f64 = chain.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    assert!(reach > 1.5 && reach < 2.3, "reach from the ankle {reach} m");
+    // the right ankle stands where the stance puts the right foot's frame (feet: left, right)
+    let st = t.stance.as_ref().unwrap();
+    assert_eq!(m.links[st.feet[1].link].name, "r_foot");
+    let ankle = st.world_from_foot[1].translation.vector;
+    let lower = (target - ankle).norm() - reach;
+    assert!(lower > 0.3, "the target must be beyond any posture: {lower}");
+    // a simple posture that any plan should beat: upright, right arm raised straight forward
+    let mut forward = zero.clone();
+    forward[m.q_index("r_shoulder_flexion").unwrap()] = std::f64::consts::FRAC_PI_2;
+    let upper = (target - grip(&t, &forward)).norm();
+    assert!((grip(&t, &forward) - grip(&t, &zero)).x > 0.5, "the arm points forward");
+
+    let p = plan(&t);
     let ph = &p.summary.phases[0];
-    assert!(!ph.reachable);
-    // arm length ≈ 0.2817 + 0.2689 + 0.75·0.0862 ≈ 0.61 m (×1.755/1.741) and the trunk can lean:
-    // the target 1.5 m ahead stays far out of reach
-    assert!(
-        ph.hand_error_m > 0.3 && ph.hand_error_m < 1.2,
-        "{}",
-        ph.hand_error_m
-    );
-    assert!(posture_opt::report::plan_summary(&p).contains("OUT OF REACH"));
+    assert!(!ph.reachable, "a target {lower:.2} m beyond reach is reported reachable");
+    assert!(ph.hand_error_m >= lower, "hand error {} below the bound {lower}", ph.hand_error_m);
+    assert!(ph.hand_error_m < upper, "hand error {} not better than the arm held forward ({upper})", ph.hand_error_m);
+    // the error is the distance from the target to where the posture puts the hand
+    let at = grip(&t, &ph.q_rad);
+    assert!(((target - at).norm() - ph.hand_error_m).abs() < 1e-6, "{at:?}");
+    // the plan's posture for the phase is that posture, and the summary says so in words
+    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let text = posture_opt::report::text::plan_summary(&t, &p, &a);
+    let says = format!("TARGET OUT OF REACH by {:.0} mm", 1000.0 * ph.hand_error_m);
+    assert!(text.contains(&says), "'{says}' missing from:\n{text}");
+}
+
+/// Known bug (see the report): for a target beyond a balanced reach the planner's posture leaves
+/// the centre of pressure far outside the feet (and, further out, slides the feet off their
+/// stance), while the phase is still reported `reachable` when the hand gets within 1 cm.
+#[test]
+#[ignore = "known bug: far targets give postures out of balance (reported reachable) or with the feet moved; run with --ignored"]
+fn the_nearest_posture_keeps_the_feet_and_the_balance() {
+    for x in [1.2, 1.5, 2.5] {
+        let t = far_task(x);
+        let p = plan(&t);
+        let ph = &p.summary.phases[0];
+        let mut pw = posture_opt::plan::posture::PostureWork::new(&t);
+        pw.statics(&t, &ph.q_rad, &[Vector3::zeros(); 2]);
+        for i in 0..2 {
+            let slid = pw.foot_error(&t, i).0.norm();
+            assert!(slid < 1e-3, "target {x} m ahead: foot {i} slid {slid} m off its stance");
+        }
+        let margin = ph.balance_margin_m.unwrap();
+        assert!(margin > -1e-3, "target {x} m ahead: balance margin {margin} m (reachable: {})", ph.reachable);
+    }
 }

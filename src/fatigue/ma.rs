@@ -159,60 +159,17 @@ pub enum FatigueError {
 /// Smallest capacity the state keeps, so that c stays in (0, 1] even after absurdly long holds.
 const C_FLOOR: f64 = f64::MIN_POSITIVE;
 
-/// Beyond this `λt` the equilibrium form of U is used (e^{−30} ≈ 1e−13).
-const LAMBDA_T_SWITCH: f64 = 30.0;
-
-/// `(ln(1+w) - w/(1+w)) / w²`, accurate for small |w| (series) and large w.
-#[inline]
-fn g_of_w(w: f64) -> f64 {
-    if w.abs() < 1e-3 {
-        // ln(1+w) - w/(1+w) = w²/2 - 2w³/3 + 3w⁴/4 - 4w⁵/5 + ...
-        0.5 + w * (-2.0 / 3.0 + w * (0.75 - w * 0.8))
-    } else {
-        (w.ln_1p() - w / (1.0 + w)) / (w * w)
-    }
-}
 
 /// Exact capacity and U increment of holding `f` for `t_min` from capacity `c0`, with fatigue
 /// rate `k` and recovery rate `r` (both per minute, `r` the rate for this load).
 /// Returns `(c1, ΔU)`; ΔU may be infinite when it exceeds a double.
 #[inline]
 pub fn step_exact(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> (f64, f64) {
-    let lambda = k * f + r;
-    if lambda <= 0.0 || t_min <= 0.0 {
+    if k * f + r <= 0.0 || t_min <= 0.0 {
         return (c0, 0.0);
     }
-    if r == 0.0 {
-        let x = k * f * t_min;
-        let c1 = (c0 * (-x).exp()).max(C_FLOOR);
-        let du = (2.0 * x).exp_m1() / (2.0 * k * c0 * c0);
-        return (c1, du);
-    }
-    let a = r / lambda;
-    let b = c0 - a;
-    let lt = lambda * t_min;
-    if lt <= LAMBDA_T_SWITCH {
-        // x1 - 1 = e^{λt} - 1 without cancellation; e^{-λt} = 1 / x1 reuses it.
-        let xm1 = lt.exp_m1();
-        let c1 = (a + b / (1.0 + xm1)).clamp(C_FLOOR, 1.0);
-        if f == 0.0 {
-            return (c1, 0.0);
-        }
-        let inv_c0 = 1.0 / c0;
-        let y = xm1 * inv_c0;
-        let w = a * y;
-        let du = f / lambda * y * (inv_c0 / (1.0 + w) + g_of_w(w) * y);
-        (c1, du)
-    } else {
-        let s = (-lt).exp();
-        let c1 = (a + b * s).clamp(C_FLOOR, 1.0);
-        if f == 0.0 {
-            return (c1, 0.0);
-        }
-        let ln_1p_w = lt + (a / c0).ln() + (b * s / a).ln_1p();
-        let du = f / (lambda * a * a) * ln_1p_w - f * b * (1.0 - s) / (lambda * a * c0 * c1);
-        (c1, du.max(0.0))
-    }
+    let (c1, du) = super::schedule::Prepared::from_rates(k, f, r, t_min).apply(c0);
+    (c1.clamp(C_FLOOR, 1.0), if f == 0.0 { 0.0 } else { du.max(0.0) })
 }
 
 impl MaParams {

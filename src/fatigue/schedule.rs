@@ -15,10 +15,12 @@
 //!   about `c*` (geometric sums of `δ` and `δ²`; the neglected third-order term is below 10⁻⁹
 //!   of the total);
 //! * when it dies slowly, four cycles are summed exactly and the rest by the Euler–Maclaurin
-//!   formula: `Σ φ(j) = ∫φ + (φ(0) + φ(m−1))/2 + (φ'(m−1) − φ'(0))/12`, with
-//!   `φ(x) = u(c* + δ e^{−Lx})`; the integral becomes `(1/L) ∫ (u(c*+y) − u(c*))/y dy` over the
-//!   transient's range, done by 12-point Gauss–Legendre. The first neglected term is
-//!   `L³/720` of the transient's scale (below 1.2·10⁻⁵ for `L < 0.2`).
+//!   formula to its B₄ term: `Σ φ(j) = ∫φ + (φ(0) + φ(m−1))/2 + (φ'(m−1) − φ'(0))/12 −
+//!   (φ'''(m−1) − φ'''(0))/720`, with `φ(x) = u(c* + δ e^{−Lx})`; the integral becomes
+//!   `(1/L) ∫ u(c*+y) d ln|y|` over the transient's range, by 12-point Gauss–Legendre on panels
+//!   0.5 wide in `ln|y|`. φ varies at rates up to 2L (U grows like `e^{2Lx}` when recovery is
+//!   negligible), so the first neglected term is about `(2L)⁵/30240` of the transient's scale
+//!   (below 1.2·10⁻⁵ for `L < 0.2`).
 //!
 //! Everything is generic over [`Real`], so one pass gives the value and, with [`Dual2`](super::dual::Dual2),
 //! its first and second derivatives with respect to one step's load.
@@ -49,13 +51,15 @@ pub struct CyclesOutcome<T> {
 
 /// A step with its per-step constants precomputed.
 #[derive(Clone, Copy)]
-struct Prepared<T> {
+pub(crate) struct Prepared<T> {
     f: T,
     /// No recovery during the step: `c1 = c0 s`, `ΔU = e2 / c0²`.
     no_recovery: bool,
     lambda: T,
     a: T,
+    /// `e^{−λt}` and `1 − e^{−λt}` (formed without cancellation for small λt).
     s: T,
+    one_minus_s: T,
     /// `e^{λt} − 1` (recovery, λt ≤ 30) or `(e^{2kft} − 1)/2k` (no recovery).
     xm1_or_e2: T,
     lt: T,
@@ -75,10 +79,11 @@ fn g_of_w<T: Real>(w: T) -> T {
 
 impl<T: Real> Prepared<T> {
     fn new(p: &MaParams, st: &HeldStep<T>) -> Self {
-        let k = p.k_per_min;
-        let f = st.f;
-        let t = st.t_min;
-        let r = recovery_rate(p, f);
+        Self::from_rates(p.k_per_min, st.f, recovery_rate(p, st.f), st.t_min)
+    }
+
+    /// Holding `f` for `t` minutes with fatigue rate `k` and recovery rate `r` (per minute).
+    pub(crate) fn from_rates(k: f64, f: T, r: T, t: f64) -> Self {
         let lambda = f * k + r;
         if r.val() == 0.0 {
             let x = f * (k * t);
@@ -88,6 +93,7 @@ impl<T: Real> Prepared<T> {
                 lambda,
                 a: T::cst(0.0),
                 s: (-x).exp(),
+                one_minus_s: -(-x).exp_m1(),
                 xm1_or_e2: (x * 2.0).exp_m1() / (2.0 * k),
                 lt: x,
                 big: false,
@@ -103,6 +109,7 @@ impl<T: Real> Prepared<T> {
             lambda,
             a,
             s,
+            one_minus_s: -(-lt).exp_m1(),
             xm1_or_e2: if big { T::cst(0.0) } else { lt.exp_m1() },
             lt,
             big,
@@ -111,23 +118,39 @@ impl<T: Real> Prepared<T> {
 
     /// Capacity after the step and the U gained, from capacity `c0`.
     #[inline]
-    fn apply(&self, c0: T) -> (T, T) {
+    pub(crate) fn apply(&self, c0: T) -> (T, T) {
         if self.no_recovery {
             return (c0 * self.s, self.xm1_or_e2 / (c0 * c0));
         }
         let a = self.a;
-        let b = c0 - a;
-        let c1 = a + b * self.s;
         let f = self.f;
+        // c1 = c0 e^{−λt} + a (1 − e^{−λt}): two non-negative terms, so a small capacity keeps
+        // its relative precision (a + (c0 − a) e^{−λt} would cancel).
         if !self.big {
-            let y = self.xm1_or_e2 / c0;
+            let xm1 = self.xm1_or_e2;
+            let c1 = (c0 + a * xm1) / (xm1 + 1.0);
+            let y = xm1 / c0;
             let w = a * y;
             let du = f / self.lambda * y * (T::cst(1.0) / (c0 * (w + 1.0)) + g_of_w(w) * y);
             (c1, du)
         } else {
-            let ln_1p_w = self.lt + (a / c0).ln() + (b * self.s / a).ln_1p();
-            let du = f / (self.lambda * a * a) * ln_1p_w
-                - f * b * (-self.s + 1.0) / (self.lambda * a * c0 * c1);
+            let c1 = c0 * self.s + a * self.one_minus_s;
+            // ΔU = f/(λa²)·h(w) + f/(λ a c0)·w/(1+w), w = a (e^{λt} − 1)/c0, h(w) = ln(1+w) −
+            // w/(1+w) ≥ 0: no cancellation however small a = R/λ is; w is formed from its
+            // logarithm, so e^{λt} never overflows.
+            let ln_w = (a / c0).ln() + self.lt + (-self.s).ln_1p();
+            let (h_over_a2, q) = if ln_w.val() > 36.0 {
+                // w > 4e15: ln(1+w) = ln w + 1/w to double precision.
+                let inv_w = (-ln_w).exp();
+                let q = T::cst(1.0) / (inv_w + 1.0);
+                ((ln_w + inv_w - q) / a / a, q)
+            } else {
+                let w = ln_w.exp();
+                // h(w)/a² = g(w)·(w/a)², with w/a = (e^{λt} − 1)/c0 formed without a.
+                let y = (ln_w - a.ln()).exp();
+                (g_of_w(w) * y * y, w / (w + 1.0))
+            };
+            let du = f / self.lambda * (h_over_a2 + q / (a * c0));
             (c1, du)
         }
     }
@@ -229,7 +252,7 @@ pub fn repeated_cycles<T: Real>(
     let mut ln_a = zero;
     for s in &cycle.steps {
         a_map = a_map * s.s;
-        b_map = b_map * s.s + s.a * (-s.s + 1.0);
+        b_map = b_map * s.s + s.a * s.one_minus_s;
         ln_a = ln_a - s.lt;
     }
     let big_l = -ln_a.val();
@@ -246,7 +269,7 @@ pub fn repeated_cycles<T: Real>(
     if cycle.steps.iter().all(|s| s.no_recovery) {
         return no_recovery_total(&cycle, c0t, ln_a, n_cycles);
     }
-    let c_star = b_map / (-a_map + 1.0);
+    let c_star = b_map / -ln_a.exp_m1();
     let mut c = c0t;
     let mut u = zero;
     let mut n = 0u64;
@@ -272,11 +295,67 @@ pub fn repeated_cycles<T: Real>(
         n += 1;
     }
     let _ = n;
-    let u = if u.val().is_finite() { u } else { T::cst(1e300) };
+    if !u.val().is_finite() {
+        // U passed the largest double: the value in logarithms (its derivatives are meaningless
+        // so far past exhaustion and are dropped).
+        let (ln_u, ln_c) = log_domain_cycles(&cycle, c0, n_cycles);
+        return CyclesOutcome {
+            u_min: ScaledU { u: T::cst(1.0), ln_scale: ln_u },
+            capacity_end: T::cst(ln_c.exp()),
+        };
+    }
     CyclesOutcome {
         u_min: ScaledU { u, ln_scale: 0.0 },
         capacity_end: c,
     }
+}
+
+/// `ln(e^x + e^y)`.
+fn ln_add(x: f64, y: f64) -> f64 {
+    let (hi, lo) = if x >= y { (x, y) } else { (y, x) };
+    if lo == f64::NEG_INFINITY { hi } else { hi + (lo - hi).exp().ln_1p() }
+}
+
+/// The cycles held one by one with U and capacity in logarithms: `(ln U, ln c_end)`.
+/// Without recovery the rate is k = λ/f (only called where U overflows, so f > 0 somewhere).
+fn log_domain_cycles<T: Real>(cycle: &Cycle<T>, c0: f64, n_cycles: u64) -> (f64, f64) {
+    let mut ln_u = f64::NEG_INFINITY;
+    let mut ln_c = c0.ln();
+    for _ in 0..n_cycles {
+        for st in &cycle.steps {
+            let f = st.f.val();
+            if st.no_recovery {
+                let x = st.lt.val();
+                if f > 0.0 && x > 0.0 {
+                    // ΔU = (e^{2x} − 1) / (2k c0²), with 1/(2k) = xm1_or_e2 / (e^{2x} − 1)
+                    let ln_em1 = if 2.0 * x > 1.0 {
+                        2.0 * x + (-(-2.0 * x).exp()).ln_1p()
+                    } else {
+                        (2.0 * x).exp_m1().ln()
+                    };
+                    // without recovery λ = k f
+                    let ln_2k = (2.0 * st.lambda.val() / f).ln();
+                    ln_u = ln_add(ln_u, ln_em1 - ln_2k - 2.0 * ln_c);
+                }
+                ln_c -= x;
+            } else {
+                let c = ln_c.exp();
+                let (c1, du) = st.apply(T::cst(c));
+                if f > 0.0 {
+                    let du = du.val();
+                    let ln_du = if du.is_finite() && c > 0.0 {
+                        du.ln()
+                    } else {
+                        // c0 → 0: ΔU → f/(λ a c0) (the w/(1+w) → 1 term dominates).
+                        (f / (st.lambda.val() * st.a.val())).ln() - ln_c
+                    };
+                    ln_u = ln_add(ln_u, ln_du);
+                }
+                ln_c = c1.val().max(f64::MIN_POSITIVE).ln();
+            }
+        }
+    }
+    (ln_u, ln_c)
 }
 
 /// The lowest capacity a group reaches at the end of the steps marked in `mask` over
@@ -299,7 +378,7 @@ pub fn lowest_end_capacity<T: Real>(
     let mut ln_a = T::cst(0.0);
     for s in &cycle.steps {
         a_map = a_map * s.s;
-        b_map = b_map * s.s + s.a * (-s.s + 1.0);
+        b_map = b_map * s.s + s.a * s.one_minus_s;
         ln_a = ln_a - s.lt;
     }
     let first = T::cst(c0);
@@ -308,7 +387,7 @@ pub fn lowest_end_capacity<T: Real>(
     } else if cycle.steps.iter().all(|s| s.no_recovery) {
         (ln_a * (n_cycles - 1) as f64).exp() * c0
     } else {
-        let c_star = b_map / (-a_map + 1.0);
+        let c_star = b_map / -ln_a.exp_m1();
         c_star + (first - c_star) * (ln_a * (n_cycles - 1) as f64).exp()
     };
     let mut lowest = T::cst(f64::INFINITY);
@@ -377,28 +456,58 @@ fn euler_maclaurin_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, ln_a: T,
     let u_star = cycle.u(c_star);
     let y0 = delta;
     let y1 = delta * (ln_a * (mf - 1.0)).exp();
-    // ∫_0^{m−1} (φ − u*) dx = (1/L) ∫_{y1}^{y0} (u(c*+y) − u*)/y dy
-    let mid = (y0 + y1) * 0.5;
-    let half = (y0 - y1) * 0.5;
+    // ∫_0^{m−1} φ dx = (1/L) ∫_{ln|y1|}^{ln|y0|} u(c* + y) d ln|y|: composite Gauss–Legendre on
+    // panels at most 0.5 wide in ln|y| (u varies like 1/c², so it is smooth in ln|y| even when
+    // c* ≪ |δ|). Where |y| < 1e-14 c*, φ = u* to double precision: that part is u* times its
+    // length in x. u itself is integrated (not u − u*), so a c* far below the transient's
+    // capacities, where u* dwarfs the transient's u, cannot cancel.
+    let sign = if delta.val() < 0.0 { -1.0 } else { 1.0 };
+    let ln_hi = (delta * sign).ln();
+    let ln_lo_full = ln_hi + ln_a * (mf - 1.0);
+    let cut = (1e-14 * c_star.val().max(f64::MIN_POSITIVE)).ln();
+    let ln_lo = if ln_lo_full.val() < cut { T::cst(cut.min(ln_hi.val())) } else { ln_lo_full };
+    let width = (ln_hi - ln_lo).val();
+    let panels = ((width / 0.5).ceil() as usize).clamp(1, 4000);
+    let step = (ln_hi - ln_lo) / panels as f64;
     let mut integral = T::cst(0.0);
-    for &(x, w) in &GL12 {
-        for sgn in [-1.0, 1.0] {
-            let y = mid + half * (x * sgn);
-            integral = integral + (cycle.u(c_star + y) - u_star) / y * w;
+    for p in 0..panels {
+        let mid = ln_lo + step * (p as f64 + 0.5);
+        for &(x, w) in &GL12 {
+            for sgn in [-1.0, 1.0] {
+                let y = (mid + step * (0.5 * x * sgn)).exp() * sign;
+                integral = integral + cycle.u(c_star + y) * (step * (0.5 * w));
+            }
         }
     }
-    let integral = integral * half / big_l + u_star * (mf - 1.0);
+    let integral = (integral + u_star * (ln_lo - ln_lo_full)) / big_l;
     let phi0 = cycle.u(c_star + y0);
     let phi1 = cycle.u(c_star + y1);
-    // φ'(x) = −L y u'(c* + y)
+    // With g(y) = u(c* + y) and d/dx = −L y d/dy:
+    //   φ' = −L y g',  φ''' = −L³ (y g' + 3 y² g'' + y³ g''').
     let du_dc = |c: T| {
-        let h = 1e-6 * c.val().max(1e-3);
+        let h = 1e-6 * c.val();
         (cycle.u(c + h) - cycle.u(c - h)) / (2.0 * h)
+    };
+    let d3phi = |y: T| {
+        let c = c_star + y;
+        let h = 0.02 * c.val();
+        let (um2, um1, u0, up1, up2) = (
+            cycle.u(c - 2.0 * h),
+            cycle.u(c - h),
+            cycle.u(c),
+            cycle.u(c + h),
+            cycle.u(c + 2.0 * h),
+        );
+        let g2 = (up1 - u0 * 2.0 + um1) / (h * h);
+        let g3 = (up2 - up1 * 2.0 + um1 * 2.0 - um2) / (2.0 * h * h * h);
+        -big_l * big_l * big_l * (y * du_dc(c) + y * y * g2 * 3.0 + y * y * y * g3)
     };
     let dphi0 = -big_l * y0 * du_dc(c_star + y0);
     let dphi1 = -big_l * y1 * du_dc(c_star + y1);
-    integral + (phi0 + phi1) * 0.5 + (dphi1 - dphi0) / 12.0
+    // Euler–Maclaurin to the B₄ term: + (φ'(b) − φ'(a))/12 − (φ'''(b) − φ'''(a))/720.
+    integral + (phi0 + phi1) * 0.5 + (dphi1 - dphi0) / 12.0 - (d3phi(y1) - d3phi(y0)) / 720.0
 }
+
 
 #[cfg(test)]
 mod tests {

@@ -225,8 +225,8 @@ impl PostureQp {
             .iterative_refinement_enable(true)
             .iterative_refinement_reltol(1e-13)
             .iterative_refinement_abstol(1e-12)
-            .iterative_refinement_max_iter(std::env::var("XIR").ok().and_then(|v| v.parse().ok()).unwrap_or(10))
-            .static_regularization_constant(std::env::var("XREG").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-8))
+            .iterative_refinement_max_iter(10)
+            .static_regularization_constant(1e-8)
             .direct_solve_method("qdldl".into())
             .build()
             .map_err(|e| QpError::Setup(e.to_string()))?;

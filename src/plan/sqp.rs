@@ -709,18 +709,6 @@ pub fn solve_phase(
                 (q[k] + work.qp.x[k] / scale).clamp(j.lower_rad, j.upper_rad) - q[k]
             })
             .collect();
-        if std::env::var("SQP_DEBUG").is_ok() {
-            let dn = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            eprintln!("it {} phi {:.6} j {:.6} eq {:.2e} geo {:.2e} cap {:.2e} | stat {:.2e} comp {:.2e} feas {:.2e} | pred {:.3e} |d| {:.3e}", out.iterations, m0.phi, m0.j, m0.eq_inf, m0.geo, m0.cap, stat, comp, feas, pred, dn);
-            // directional derivative of the merit along d by finite differences
-            for &eps in &[1e-3, 1e-5, 1e-7] {
-                for k in 0..n { work.q_trial[k] = q[k] + eps * d[k]; }
-                let trial = std::mem::take(&mut work.q_trial);
-                let m1 = merit(task, scene, pw, work, prob, &trial);
-                work.q_trial = trial;
-                eprintln!("    eps {eps:e}: dphi/eps {:.4e} (dj {:.4e} deq {:.4e} dgeo {:.4e} dcap {:.4e})", (m1.phi - m0.phi)/eps, (m1.j-m0.j)/eps, s.mu_eq*(m1.eq_l1-m0.eq_l1)/eps, s.mu_geo*(m1.geo-m0.geo)/eps, s.mu_cap*(m1.cap-m0.cap)/eps);
-            }
-        }
         let mut accepted = false;
         let mut alpha = 1.0;
         while alpha >= 1e-8 {
@@ -743,9 +731,6 @@ pub fn solve_phase(
                 }
             }
             work.q_trial = trial;
-            if std::env::var("SQP_DEBUG").is_ok() {
-                eprintln!("    alpha {alpha:.3e}: actual {:.4e} vs pred {:.4e} (dj {:.3e} eq {:.2e})", m0.phi - m1.phi, alpha * pred, m0.j - m1.j, m1.eq_inf);
-            }
             if enough(&m1) {
                 q.copy_from_slice(&work.q_trial);
                 m0 = m1;
@@ -762,23 +747,6 @@ pub fn solve_phase(
             continue;
         }
         if !accepted {
-            if std::env::var("SQP_DEBUG").is_ok() {
-                let c = work.qp.cols;
-                let mut idx: Vec<usize> = (0..c.e).collect();
-                idx.sort_by(|a, b| work.stat[*b].abs().total_cmp(&work.stat[*a].abs()));
-                let mut at_x = vec![0.0; c.n_var];
-                work.qp.stationarity(&work.qp.x.clone(), &mut at_x);
-                let nn = work.qp.sizes.n;
-                let dmax = (0..nn).map(|k| (work.qp.p_dq[k * nn + k], task.model.q_joint(k).name.clone())).fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a });
-                eprintln!("  P_dq largest diagonal {:?}", dmax);
-                let zi = (0..work.qp.z.len()).max_by(|a, b| work.qp.z[*a].abs().total_cmp(&work.qp.z[*b].abs())).unwrap_or(0);
-                eprintln!("  largest dual row {zi} (rows {:?})", work.qp.rows);
-                eprintln!("  stationarity at the QP's own solution: {:.3e}; z max {:.3e}", at_x.iter().fold(0.0f64, |m, v| m.max(v.abs())), work.qp.z.iter().fold(0.0f64, |m, v| m.max(v.abs())));
-                for &i in idx.iter().take(6) {
-                    let what = if i < n { format!("dq {}", task.model.q_joint(i).name) } else if i < c.s_minus { format!("s+ {}", task.model.q_joint(scene.actuated[i - c.s_plus]).name) } else { format!("s- {}", task.model.q_joint(scene.actuated[i - c.s_minus]).name) };
-                    eprintln!("  stat[{what}] = {:.3e}  x0 {:.3e} x* {:.3e} p {:.3e} q {:.3e}", work.stat[i], work.x0[i], work.qp.x[i], work.qp.p_diag[i], work.qp.q[i]);
-                }
-            }
             out.stop = Stop::LineSearch;
             break;
         }

@@ -402,6 +402,8 @@ pub struct ObjectiveSettings {
 /// A validated task.
 #[derive(Debug)]
 pub struct Task {
+    /// The file as written (e.g. to plan it again for another worker).
+    pub source: TaskFile,
     pub name: String,
     pub path: PathBuf,
     /// The URDF used (file path, or "generated from worker").
@@ -478,6 +480,7 @@ impl Task {
 
     /// Validates a parsed task; `path` locates the robot and names the file in messages.
     pub fn from_task_file(f: TaskFile, path: &Path) -> Result<Self, TaskError> {
+        let source = f.clone();
         let p = path.display().to_string();
         let field = |field: &str, problem: String| TaskError::Field {
             path: p.clone(),
@@ -775,6 +778,7 @@ impl Task {
             ));
         }
         Ok(Task {
+            source,
             name: f.name,
             path: path.to_path_buf(),
             robot,

@@ -119,6 +119,9 @@ pub struct CompareShard {
 
 pub const SHARD_KIND: &str = "posture-opt compare shard";
 
+/// Most layouts in one comparison (split larger studies into shards).
+pub const MAX_LAYOUTS: usize = 1000;
+
 pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
 
 /// A planned layout: its plan and assessment (for reports).

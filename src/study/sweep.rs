@@ -240,6 +240,42 @@ pub struct SweepShard {
 
 pub const SHARD_KIND: &str = "posture-opt sweep shard";
 
+/// Largest sampled population.
+pub const MAX_SAMPLE: usize = 100_000;
+
+/// The population to sweep: the standard one, or `n` sampled workers from `seed`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Population {
+    Standard,
+    Sampled { n: usize, seed: u64 },
+}
+
+impl Population {
+    /// Its members; refuses an empty or too large sample.
+    pub fn members(&self) -> Result<Vec<Member>, String> {
+        match *self {
+            Population::Standard => Ok(standard_population()),
+            Population::Sampled { n: 0, .. } => Err("a sample needs at least 1 worker".into()),
+            Population::Sampled { n, .. } if n > MAX_SAMPLE => Err(format!(
+                "a sample of {n} workers: at most {MAX_SAMPLE} (split a larger study into shards)"
+            )),
+            Population::Sampled { n, seed } => Ok(sampled_population(n, seed)),
+        }
+    }
+
+    /// Its name in documents.
+    pub fn label(&self) -> String {
+        match *self {
+            Population::Standard => "P5/P50/P95 women and men".into(),
+            Population::Sampled { n, seed } => format!("sampled n={n} seed={seed}"),
+        }
+    }
+
+    pub fn is_sampled(&self) -> bool {
+        matches!(self, Population::Sampled { .. })
+    }
+}
+
 /// Why a sweep failed.
 #[derive(Debug, thiserror::Error)]
 pub enum SweepError {

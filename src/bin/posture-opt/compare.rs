@@ -24,15 +24,12 @@ pub struct Args {
     merge: bool,
 }
 
-/// At most this many layouts in one comparison.
-const MAX_LAYOUTS: usize = 1000;
-
 pub fn run(a: Args) -> anyhow::Result<()> {
     if a.merge {
         return merge(&a);
     }
-    if a.files.len() > MAX_LAYOUTS {
-        return Err(bad(format!("at most {MAX_LAYOUTS} layouts per comparison (use --shard to split)")));
+    if a.files.len() > compare::MAX_LAYOUTS {
+        return Err(bad(format!("at most {} layouts per comparison (use --shard to split)", compare::MAX_LAYOUTS)));
     }
     let names: Vec<String> = a.files.iter().map(|p| p.display().to_string()).collect();
     let tasks: Vec<Task> = a

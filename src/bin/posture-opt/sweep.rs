@@ -35,9 +35,6 @@ pub struct Args {
     stream: bool,
 }
 
-/// Largest sample.
-pub const MAX_SAMPLE: usize = 100_000;
-
 pub fn run(a: Args) -> anyhow::Result<()> {
     if a.merge {
         return merge(&a);
@@ -52,14 +49,12 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     })?;
     // validate once for the task's own worker, so a bad file fails before the sweep
     let task = posture_opt::plan::Task::from_task_file(file.clone(), task_path).map_err(lib_err)?;
-    let (members, population, sampled) = match a.sample {
-        Some(0) => return Err(bad("--sample must be at least 1")),
-        Some(n) if n > MAX_SAMPLE => {
-            return Err(bad(format!("--sample {n}: at most {MAX_SAMPLE} workers (use --shard to spread a larger study)")));
-        }
-        Some(n) => (sweep::sampled_population(n, a.seed), format!("sampled n={n} seed={}", a.seed), true),
-        None => (sweep::standard_population(), "P5/P50/P95 women and men".to_string(), false),
+    let pop = match a.sample {
+        Some(n) => sweep::Population::Sampled { n, seed: a.seed },
+        None => sweep::Population::Standard,
     };
+    let members = pop.members().map_err(|e| bad(format!("--sample: {e}")))?;
+    let (population, sampled) = (pop.label(), pop.is_sampled());
     let shard = a.shard.unwrap_or(Shard::ALL);
     let todo = shard.indices(members.len()).len();
     let mut inputs: Vec<&std::path::Path> = vec![task_path];

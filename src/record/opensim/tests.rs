@@ -1,24 +1,24 @@
-//! Tests of the OpenSim reader and mapping. Data files are in `tests/data/`
-//! (written by hand to the format), the shipped mapping at the crate root.
+//! Tests of the OpenSim reader and mapping. Data files are in `tests/data/opensim/`
+//! (written by hand to the format), the shipped mapping in `data/opensim/`.
 
 use super::*;
 use std::io::{BufReader, Cursor, Read};
 
 const SMALL_MOT: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/data/rajagopal_small.mot"
+    "/tests/data/opensim/rajagopal_small.mot"
 ));
 const RADIANS_STO: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/data/small_radians.sto"
+    "/tests/data/opensim/small_radians.sto"
 ));
 const LEGACY_MOT: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/data/legacy_simm.mot"
+    "/tests/data/opensim/legacy_simm.mot"
 ));
 const RAJAGOPAL_YAML: &str = include_str!(concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/rajagopal2016.mapping.yaml"
+    "/data/opensim/rajagopal2016.mapping.yaml"
 ));
 
 /// The worker's joints in q order (worker_joints.md).

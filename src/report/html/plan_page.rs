@@ -433,10 +433,9 @@ fn phase_card(
                 "centre of pressure {} {} the feet{}",
                 mm(m.abs()),
                 if m >= 0.0 { "inside" } else { "outside" },
-                opt(share, |s| format!(
-                    "; {} of the weight on the left foot",
-                    pct(s)
-                ))
+                share
+                    .map(|s| format!("; {} of the weight on the left foot", pct(s)))
+                    .unwrap_or_default()
             ),
         ));
     }

@@ -1,0 +1,429 @@
+#!/usr/bin/env python3
+"""Global search for the fatigue-only optimum of a task (independent reference).
+
+    python3 optimise.py TASK [--budget SECONDS] [--out results/TASK.json]
+
+Method (README.md beside this file):
+  1. joint multi-start: the whole plan (all distinct phases) solved as one NLP from several
+     deterministic seed families (SLSQP, then IPOPT polish); the best is the reference plan;
+  2. per-phase global search: for every seed family and random seed, each phase's posture is
+     re-solved with the other phases fixed at the current best plan (exact total-U objective,
+     SLSQP->IPOPT and IPOPT paths); every improvement of the total is accepted at once
+     (block-coordinate descent with multi-start blocks);
+  3. basin hopping per phase: random perturbations of joint groups of the best posture;
+  4. joint polish of the best plan, pool re-solve, joint polish again; strict feasibility check
+     with the evaluator.
+"""
+import argparse
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reference import model as M  # noqa: E402
+from reference import search as S  # noqa: E402
+from reference.nlp import JointNLP  # noqa: E402
+
+GROUPS = {
+    "right_arm": ["r_shoulder_flexion", "r_shoulder_abduction", "r_shoulder_rotation",
+                  "r_elbow_flexion", "r_forearm_pronation", "r_wrist_flexion", "r_wrist_deviation"],
+    "left_arm": ["l_shoulder_flexion", "l_shoulder_abduction", "l_shoulder_rotation",
+                 "l_elbow_flexion", "l_forearm_pronation", "l_wrist_flexion", "l_wrist_deviation"],
+    "trunk": ["lumbar_flexion", "lumbar_lateral_bending", "lumbar_axial_rotation", "pelvis_rotation",
+              "pelvis_tilt", "pelvis_list", "neck_flexion", "neck_lateral_bending",
+              "neck_axial_rotation"],
+    "legs": ["pelvis_tx", "pelvis_ty", "pelvis_tz", "r_hip_flexion", "r_hip_abduction",
+             "r_hip_rotation", "r_knee_flexion", "r_ankle_dorsiflexion", "r_ankle_inversion",
+             "l_hip_flexion", "l_hip_abduction", "l_hip_rotation", "l_knee_flexion",
+             "l_ankle_dorsiflexion", "l_ankle_inversion"],
+}
+
+
+class Search:
+    def __init__(self, key, budget, log=print, n_random=16, resume=None, seed_offset=0):
+        self.key = key
+        self.t = M.load_task(key)
+        self.pr = M.Problem(self.t)
+        self.full = JointNLP(self.pr)
+        self.b = self.t.body
+        self.budget = budget
+        self.t0 = time.time()
+        self.log = log
+        self.n_random = n_random
+        self.best = None          # dict(U, qs, fs, origin per phase)
+        self.joint_optima = []    # (U, label)
+        self.phase_pool = {gi: [] for gi in range(self.t.P)}   # (q, label)
+        self.starts = []          # labels of all local solves
+        self.solves = 0
+        self.resume = resume
+        self.seed_offset = seed_offset
+        self.prev_runtime = 0.0
+
+    # --- helpers --------------------------------------------------------------------------------
+    def elapsed(self):
+        return time.time() - self.t0
+
+    def plan_total(self, qs):
+        fs = [self.full.pm[gi].loads_from_q(qs[gi]) for gi in range(self.t.P)]
+        U, c, tex = self.pr.fatigue(fs)
+        return float(U.sum()), fs
+
+    def feasible_q(self, gi, q):
+        pm = self.full.pm[gi]
+        f = pm.loads_from_q(q)
+        e = pm.eq(q, f)
+        if np.max(np.abs(e[:3 * len(pm.hands) + 12])) > 1e-6:
+            return False
+        if pm.min_clearance_slack(q) < -1e-7:
+            return False
+        e2 = pm.evaluate(q, False)
+        bal = pm.edges_n @ e2["p"] - pm.edges_o - self.t.balance_margin
+        if np.min(bal) < -1e-7:
+            return False
+        if np.any(q < self.b.lower - 1e-12) or np.any(q > self.b.upper + 1e-12):
+            return False
+        return True
+
+    def offer(self, qs, origins, label, force=False):
+        """Accept a plan if it is better than the best: fewer infeasible phases, or as many and a
+        lower total U (an infeasible phase only occurs while bootstrapping a hard task)."""
+        feas = [self.feasible_q(gi, qs[gi]) for gi in range(self.t.P)]
+        U, fs = self.plan_total(qs)
+        nbad = feas.count(False)
+        if self.best is not None and not force:
+            key_old = (self.best["feas"].count(False), self.best["U"])
+            if (nbad, U) >= (key_old[0], key_old[1] - 1e-12):
+                return False
+            if nbad > 0 and nbad == key_old[0]:
+                return False
+        old = None if self.best is None else self.best["U"]
+        self.best = dict(U=U, qs=[q.copy() for q in qs], fs=fs, origin=list(origins), feas=feas)
+        self.log(f"[{self.key} {self.elapsed():7.1f}s] best {U:.10g} (was {old}) by {label}"
+                 + (f" [{nbad} phase(s) still infeasible]" if nbad else ""))
+        return True
+
+    # --- local solves ---------------------------------------------------------------------------
+    def joint_solve(self, qs0, label):
+        """All phases together: IPOPT from the seed, then a tight IPOPT polish."""
+        nlp = self.full
+        x0 = S.initial_x(nlp, qs0)
+        cands = []
+        self.starts.append(label)
+        self.solves += 1
+        try:
+            r = S.solve_ipopt(nlp, x0, max_cpu_time=60)
+            cands.append(r[0])
+            r = S.solve_ipopt(nlp, r[0], max_cpu_time=30, tol=1e-10)
+            cands.append(r[0])
+        except Exception as ex:  # a failed start is recorded and skipped
+            self.log(f"   {label}: failed {ex!r}")
+        best = None
+        for x in cands:
+            qs, _ = nlp.split(x)
+            qs = [np.clip(q, self.b.lower, self.b.upper) for q in qs]
+            if all(self.feasible_q(gi, qs[gi]) for gi in range(self.t.P)):
+                U, _ = self.plan_total(qs)
+                if best is None or U < best[0]:
+                    best = (U, qs)
+        if best is not None:
+            self.joint_optima.append((best[0], label))
+            for gi in range(self.t.P):
+                self.phase_pool[gi].append((best[1][gi], label))
+            self.offer(best[1], [label] * self.t.P, f"joint {label}")
+            self.log(f"   joint {label}: {best[0]:.8g}")
+        else:
+            self.log(f"   joint {label}: no feasible result")
+        return best
+
+    def phase_solve(self, gi, q0, label, paths=("slsqp", "ipopt"), parent=None):
+        nlp = JointNLP(self.pr, phases=[gi])
+        nlp.pm = self.full.pm
+        nlp.fixed_loads = self.best["fs"]
+        x0 = S.initial_x(nlp, [q0])
+        self.starts.append(f"{self.t.groups[gi]['name']}: {label}")
+        self.solves += 1
+        cands = []
+        try:
+            if "slsqp" in paths:
+                x1, f1, v1, _ = S.solve(nlp, x0, maxiter=200, rounds=3)
+                r = S.solve_ipopt(nlp, x1, max_cpu_time=15, tol=1e-10)
+                cands.append((r[0], label + " [slsqp+ipopt]"))
+                cands.append((x1, label + " [slsqp]"))
+            if "ipopt" in paths:
+                r = S.solve_ipopt(nlp, x0, max_cpu_time=20)
+                cands.append((r[0], label + " [ipopt]"))
+        except Exception as ex:
+            self.log(f"   {label}: failed {ex!r}")
+        out = None
+        for x, lab in cands:
+            q = np.clip(nlp.split(x)[0][0], self.b.lower, self.b.upper)
+            if not self.feasible_q(gi, q):
+                continue
+            qs = [qq.copy() for qq in self.best["qs"]]
+            qs[gi] = q
+            U, _ = self.plan_total(qs)
+            if out is None or U < out[0]:
+                out = (U, q, lab)
+        if out is not None:
+            self.phase_pool[gi].append((out[1], out[2]))
+            qs = [qq.copy() for qq in self.best["qs"]]
+            qs[gi] = out[1]
+            origins = list(self.best["origin"])
+            origins[gi] = (parent + " > " if parent else "") + out[2]
+            self.offer(qs, origins, f"{self.t.groups[gi]['name']}: {out[2]}")
+        return out
+
+    # --- stages ---------------------------------------------------------------------------------
+    def seeds_for(self, fam, rs):
+        rng = np.random.default_rng(rs) if rs is not None else None
+        return [S.ik_project(self.full.pm[gi], S.template(self.b, self.t.rest_q, fam, rng))
+                for gi in range(self.t.P)]
+
+    def run(self):
+        t = self.t
+        P = t.P
+        B = self.budget
+        if self.resume:
+            self.load_previous(self.resume)
+        else:
+            # 1. joint multi-start
+            for fam in S.FAMILIES:
+                if self.elapsed() > 0.2 * B:
+                    break
+                self.joint_solve(self.seeds_for(S.FAMILIES[fam], None), f"joint:{fam}")
+        if self.best is None:
+            # bootstrap: the IK projection of the rest posture (possibly infeasible); the
+            # per-phase solves below make the phases feasible one by one
+            self.offer(self.seeds_for({}, None), ["ik"] * P, "ik bootstrap", force=True)
+        # 2-3. rounds of: per-phase multi-start from new seeds (exploration), basin hopping on the
+        # best postures (exploitation), re-solve of the best pool postures with the current loads
+        seeds = S.seed_list(self.n_random, offset=self.seed_offset)
+        if self.resume:
+            seeds = [sd for sd in seeds if sd[2] is not None]  # families were done before
+        rng = np.random.default_rng(12345 + self.seed_offset)
+        si = 0
+        hop = 0
+        resolved = {}
+        while self.elapsed() < 0.85 * B:
+            for _ in range(3):
+                if si >= len(seeds) or self.elapsed() > 0.85 * B:
+                    break
+                name, fam, rs = seeds[si]
+                qs0 = self.seeds_for(fam, rs)
+                for gi in range(P):
+                    paths = ("slsqp", "ipopt") if si % 2 == 0 else ("ipopt", "slsqp")
+                    self.phase_solve(gi, qs0[gi], f"seed:{name}", paths=paths)
+                si += 1
+            for _ in range(2 * P):
+                if self.elapsed() > 0.85 * B:
+                    break
+                gi = hop % P
+                grp = list(GROUPS)[(hop // P) % len(GROUPS)]
+                q = self.best["qs"][gi].copy()
+                scale = 0.25 if (hop // (P * len(GROUPS))) % 2 == 0 else 0.5
+                for jn in GROUPS[grp]:
+                    i = self.b.qidx[jn]
+                    span = min(self.b.upper[i] - self.b.lower[i], 2.0)
+                    q[i] += rng.normal(0, scale) * span
+                q = np.clip(q, self.b.lower, self.b.upper)
+                q = S.ik_project(self.full.pm[gi], q)
+                self.phase_solve(gi, q, f"hop{hop}:{grp}", paths=("ipopt",) if hop % 2 else ("slsqp",),
+                                 parent=self.best["origin"][gi])
+                hop += 1
+            for gi in range(P):
+                if self.elapsed() > 0.85 * B:
+                    break
+                pool = sorted(range(len(self.phase_pool[gi])),
+                              key=lambda j: self.value_with(gi, self.phase_pool[gi][j][0]))
+                done = 0
+                for j in pool:
+                    if done >= 2:
+                        break
+                    if resolved.get((gi, j)) == self.best["U"]:
+                        continue
+                    resolved[(gi, j)] = self.best["U"]
+                    q, lab = self.phase_pool[gi][j]
+                    if np.max(np.abs(q - self.best["qs"][gi])) < 1e-6:
+                        continue
+                    self.phase_solve(gi, q, "pool", paths=("ipopt",), parent=lab)
+                    done += 1
+            if si >= len(seeds):
+                more = S.seed_list(self.n_random + 8, offset=self.seed_offset)
+                seeds += [sd for sd in more if sd[2] is not None and sd not in seeds]
+                self.n_random += 8
+        # 4. joint polish and block sweeps
+        self.polish("final")
+        return self.result()
+
+    def load_previous(self, path):
+        """Continue a previous search: its best plan, pool and records."""
+        with open(path) as fh:
+            prev = json.load(fh)
+        t = self.t
+        qs = [self.b.q_from_dict(prev["postures"][g["name"]]) for g in t.groups]
+        origins = [prev["best_found_by"][g["name"]] for g in t.groups]
+        self.joint_optima = [(d["total_u_min"], d["start"]) for d in prev["joint_local_optima"]]
+        self.starts = list(prev["starts"]["labels"])
+        self.solves = prev["starts"]["local_solves"]
+        self.prev_runtime = prev["runtime_s"]
+        pool_path = path.replace(".json", ".pool.json")
+        if os.path.exists(pool_path):
+            with open(pool_path) as fh:
+                pool = json.load(fh)
+            for g_i, g in enumerate(t.groups):
+                for d in pool.get(g["name"], []):
+                    self.phase_pool[g_i].append((self.b.q_from_dict(d["posture"]), d["label"]))
+        ok = self.offer(qs, origins, f"previous run ({prev['best_total_u_min']:.10g})")
+        if not ok:
+            raise RuntimeError("previous best plan is not feasible")
+        for gi in range(t.P):
+            self.phase_pool[gi].append((qs[gi], origins[gi]))
+
+    def value_with(self, gi, q):
+        if not self.feasible_q(gi, q):
+            return np.inf
+        qs = [qq.copy() for qq in self.best["qs"]]
+        qs[gi] = q
+        return self.plan_total(qs)[0]
+
+    def polish(self, label, sweeps=3):
+        """Joint IPOPT polish, then block sweeps (each phase re-solved from its best posture with
+        both local solvers), then a joint polish again."""
+        nlp = self.full
+        for sweep in range(sweeps):
+            before = self.best["U"]
+            try:
+                x0 = S.initial_x(nlp, self.best["qs"])
+                r = S.solve_ipopt(nlp, x0, max_cpu_time=120, tol=1e-11)
+                qs = [np.clip(q, self.b.lower, self.b.upper) for q in nlp.split(r[0])[0]]
+                self.offer(qs, [o + f" > {label}-joint" for o in self.best["origin"]],
+                           f"{label} joint ipopt")
+            except Exception as ex:
+                self.log(f"   polish failed {ex!r}")
+            for gi in range(self.t.P):
+                self.phase_solve(gi, self.best["qs"][gi].copy(), f"{label}-sweep{sweep}",
+                                 paths=("slsqp", "ipopt"), parent=self.best["origin"][gi])
+            if self.best["U"] > before - 1e-9 * abs(before):
+                break
+
+    def result(self):
+        t, b = self.t, self.b
+        rep = self.pr.evaluate(self.best["qs"])
+        # spread of the per-phase local optima with the other phases at the best plan
+        phase_optima = {}
+        for gi in range(t.P):
+            vals = sorted(set(round(self.value_with(gi, q), 6) for q, _ in self.phase_pool[gi]))
+            phase_optima[t.groups[gi]["name"]] = [v for v in vals if np.isfinite(v)]
+        postures = {g["name"]: rep["phases"][gi]["posture"] for gi, g in enumerate(t.groups)}
+        residuals = {g["name"]: rep["phases"][gi]["residuals"] for gi, g in enumerate(t.groups)}
+        return dict(
+            task=t.key,
+            task_name=t.name,
+            best_total_u_min=rep["total_u_min"],
+            exhausted=rep["exhausted"],
+            exhaustion_time_min=rep["exhaustion_time_min"],
+            exhausted_half_joints=rep["exhausted_half_joints"],
+            feasible=rep["feasible"],
+            max_unactuated_torque_nm=rep["max_unactuated_torque_nm"],
+            phase_groups={g["name"]: g["members"] for g in t.groups},
+            postures=postures,
+            rest_posture=rep["rest"]["posture"],
+            residuals=residuals,
+            u_per_half_joint=rep["u_per_half_joint"],
+            starts=dict(count=len(self.starts), local_solves=self.solves, labels=self.starts),
+            best_found_by=dict(zip([g["name"] for g in t.groups], self.best["origin"])),
+            local_optima_totals=sorted(u for u, _ in self.joint_optima),
+            joint_local_optima=sorted([dict(total_u_min=u, start=lab) for u, lab in self.joint_optima],
+                                      key=lambda d: d["total_u_min"]),
+            phase_local_optima_totals=phase_optima,
+            runtime_s=self.elapsed() + self.prev_runtime,
+            budget_s=self.budget,
+        ), rep
+
+    def pool_json(self):
+        out = {}
+        for gi, g in enumerate(self.t.groups):
+            out[g["name"]] = [dict(label=lab, posture=self.b.q_to_dict(q)) for q, lab in self.phase_pool[gi]]
+        return out
+
+
+def _sha256(path):
+    import hashlib
+    with open(path, "rb") as fh:
+        return hashlib.sha256(fh.read()).hexdigest()
+
+
+def augment(res, task):
+    """Adds what a consumer of results/<task>.json needs without this package: the schedule of
+    one cycle (to replay the best plan as a recording), the spread of the local optima, the
+    search settings, and the input files used (with their SHA-256)."""
+    res["schedule"] = task.schedule()
+    joint = sorted(res.get("local_optima_totals", []))
+    res["spread"] = dict(
+        joint_local_optima=dict(count=len(joint),
+                                min=joint[0] if joint else None,
+                                median=float(np.median(joint)) if joint else None,
+                                max=joint[-1] if joint else None),
+        phase_local_optima={name: dict(count=len(v), min=v[0] if v else None,
+                                       median=float(np.median(v)) if v else None,
+                                       max=v[-1] if v else None)
+                            for name, v in res.get("phase_local_optima_totals", {}).items()},
+        note="joint_local_optima: total U [min] of every feasible whole-plan local optimum found "
+             "by the joint multi-start (stage 1, one per seed family); phase_local_optima: total U "
+             "with one distinct phase replaced by each posture of its pool (the other phases at "
+             "the best plan), distinct to 1e-6 min")
+    urdf = task.body.urdf_path
+    files = [task.path, urdf, os.path.join(M.INPUTS, "worker.strength.yaml"),
+             os.path.join(M.INPUTS, "fatigue_sets.yaml"), os.path.join(M.INPUTS, f"{task.key}.rest_posture.json")]
+    res["inputs"] = {os.path.relpath(f, os.path.dirname(M.INPUTS)): _sha256(f) for f in files}
+    return res
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("task")
+    ap.add_argument("--budget", type=float, default=2400.0)
+    ap.add_argument("--random", type=int, default=16)
+    ap.add_argument("--out", default=None)
+    ap.add_argument("--resume", default=None, help="results JSON of a previous run to continue")
+    ap.add_argument("--seed-offset", type=int, default=0)
+    ap.add_argument("--augment-only", action="store_true",
+                    help="only (re)write the schedule, spread and inputs fields of an existing "
+                         "results file (--out or results/TASK.json)")
+    a = ap.parse_args()
+    key = os.path.splitext(os.path.basename(a.task))[0]
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = a.out or os.path.join(here, "results", f"{key}.json")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    if a.augment_only:
+        with open(out) as fh:
+            res = json.load(fh)
+        res = augment(res, M.load_task(key))
+        with open(out, "w") as fh:
+            json.dump(res, fh, indent=1)
+        return
+    logf = open(out.replace(".json", ".log"), "a" if a.resume else "w")
+
+    def log(msg):
+        print(msg, flush=True)
+        logf.write(msg + "\n")
+        logf.flush()
+
+    s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset)
+    res, rep = s.run()
+    res = augment(res, s.t)
+    with open(out.replace(".json", ".pool.json"), "w") as fh:
+        json.dump(s.pool_json(), fh)
+    with open(out, "w") as fh:
+        json.dump(res, fh, indent=1)
+    with open(out.replace(".json", ".report.json"), "w") as fh:
+        json.dump(rep, fh, indent=1)
+    log(f"{key}: best total U {res['best_total_u_min']:.10g} min, exhausted {res['exhausted']}, "
+        f"feasible {res['feasible']['ok']}, {res['starts']['count']} starts, {res['runtime_s']:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

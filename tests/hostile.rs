@@ -1,0 +1,827 @@
+//! The hostile- and extreme-input corpus: every class of failure in the project's rule (never a
+//! silent wrong answer, never a panic, bounded time and memory; exit 0 = ok, 2 = bad input named
+//! by file and field or line, 1 = internal failure), tried with hand-made cases and generated
+//! mutants of the shipped tasks, robots and recordings. What is tried and how the mutants are
+//! made: tests/data/hostile/README.md.
+//!
+//! Known failures are kept in the corpus: a hand-made case as `#[ignore = "BUG: ..."]` (run them
+//! with `cargo test --release --test hostile -- --ignored`), a mutant in [`KNOWN_FAILURES`]. The
+//! mutant tests are strict: a known failure that passes fails the test, so the list stays true.
+
+mod common;
+use common::*;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// Time limit of a run that only reads and checks its inputs.
+const T_CHECK: Duration = Duration::from_secs(60);
+/// Time limit of a run that plans a quick task.
+const T_PLAN: Duration = Duration::from_secs(300);
+
+fn hostile(p: &str) -> PathBuf {
+    root().join("tests/data/hostile").join(p)
+}
+
+fn s(p: &Path) -> String {
+    p.display().to_string()
+}
+
+fn read(p: &Path) -> Vec<u8> {
+    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// Runs the binary with `args` in `dir`.
+fn run_in(dir: &Path, args: &[&str], timeout: Duration) -> Out {
+    Run::new(args).cwd(dir).timeout(timeout).go()
+}
+
+/// Plans a task with `--no-adapt --json` and returns the document (exit 0, finite numbers).
+fn plan_json(dir: &Path, task: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["plan", task, "--no-adapt", "--json"];
+    args.extend_from_slice(extra);
+    let o = run_in(dir, &args, T_PLAN);
+    o.ok();
+    assert_json_finite(&o);
+    o.json()
+}
+
+fn f(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+// ================================================================================================
+// A YAML tree, its flow-style emitter and the mutation operators
+// ================================================================================================
+
+mod yamlish {
+    /// A YAML document as a tree; numbers keep their text (so `.nan`, `1e300` and `2^64` can be
+    /// written), maps keep their order and may hold a key twice.
+    #[derive(Clone, Debug, PartialEq)]
+    pub enum Y {
+        Null,
+        Bool(bool),
+        Num(String),
+        Str(String),
+        Seq(Vec<Y>),
+        Map(Vec<(String, Y)>),
+    }
+
+    pub fn parse(text: &str) -> Y {
+        let v: serde_json::Value = serde_saphyr::from_str(text).expect("a shipped YAML file parses");
+        from_json(&v)
+    }
+
+    fn from_json(v: &serde_json::Value) -> Y {
+        use serde_json::Value as V;
+        match v {
+            V::Null => Y::Null,
+            V::Bool(b) => Y::Bool(*b),
+            V::Number(n) => Y::Num(n.to_string()),
+            V::String(s) => Y::Str(s.clone()),
+            V::Array(a) => Y::Seq(a.iter().map(from_json).collect()),
+            V::Object(m) => Y::Map(m.iter().map(|(k, v)| (k.clone(), from_json(v))).collect()),
+        }
+    }
+
+    fn quote(s: &str) -> String {
+        serde_json::to_string(s).unwrap()
+    }
+
+    fn key(k: &str) -> String {
+        let plain = !k.is_empty()
+            && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !k.starts_with(|c: char| c.is_ascii_digit());
+        if plain {
+            k.to_string()
+        } else {
+            quote(k)
+        }
+    }
+
+    fn flow(y: &Y, o: &mut String) {
+        match y {
+            Y::Null => o.push_str("null"),
+            Y::Bool(b) => o.push_str(if *b { "true" } else { "false" }),
+            Y::Num(n) => o.push_str(n),
+            Y::Str(s) => o.push_str(&quote(s)),
+            Y::Seq(v) => {
+                o.push('[');
+                for (i, x) in v.iter().enumerate() {
+                    if i > 0 {
+                        o.push_str(", ");
+                    }
+                    flow(x, o);
+                }
+                o.push(']');
+            }
+            Y::Map(m) => {
+                o.push('{');
+                for (i, (k, x)) in m.iter().enumerate() {
+                    if i > 0 {
+                        o.push_str(", ");
+                    }
+                    o.push_str(&key(k));
+                    o.push_str(": ");
+                    flow(x, o);
+                }
+                o.push('}');
+            }
+        }
+    }
+
+    /// The document: a top-level map one key per line (so errors have useful line numbers),
+    /// lists of maps one element per line, everything else in flow style.
+    pub fn emit(y: &Y) -> String {
+        let mut o = String::new();
+        match y {
+            Y::Map(m) if !m.is_empty() => {
+                for (k, x) in m {
+                    o.push_str(&key(k));
+                    o.push(':');
+                    match x {
+                        Y::Seq(v) if !v.is_empty() && v.iter().all(|e| matches!(e, Y::Map(_))) => {
+                            o.push('\n');
+                            for e in v {
+                                o.push_str("  - ");
+                                flow(e, &mut o);
+                                o.push('\n');
+                            }
+                        }
+                        Y::Map(inner) if !inner.is_empty() => {
+                            o.push('\n');
+                            for (k2, x2) in inner {
+                                o.push_str("  ");
+                                o.push_str(&key(k2));
+                                o.push_str(": ");
+                                flow(x2, &mut o);
+                                o.push('\n');
+                            }
+                        }
+                        _ => {
+                            o.push(' ');
+                            flow(x, &mut o);
+                            o.push('\n');
+                        }
+                    }
+                }
+            }
+            other => {
+                flow(other, &mut o);
+                o.push('\n');
+            }
+        }
+        o
+    }
+
+    #[derive(Clone, Debug, PartialEq)]
+    pub enum Seg {
+        Key(String),
+        Idx(usize),
+    }
+
+    pub fn show(p: &[Seg]) -> String {
+        let mut o = String::new();
+        for s in p {
+            match s {
+                Seg::Key(k) => {
+                    if !o.is_empty() {
+                        o.push('.');
+                    }
+                    o.push_str(k);
+                }
+                Seg::Idx(i) => o.push_str(&format!("[{i}]")),
+            }
+        }
+        o
+    }
+
+    /// Every node but the root, depth first.
+    pub fn paths(y: &Y) -> Vec<Vec<Seg>> {
+        let mut out = Vec::new();
+        fn go(y: &Y, at: &mut Vec<Seg>, out: &mut Vec<Vec<Seg>>) {
+            match y {
+                Y::Seq(v) => {
+                    for (i, x) in v.iter().enumerate() {
+                        at.push(Seg::Idx(i));
+                        out.push(at.clone());
+                        go(x, at, out);
+                        at.pop();
+                    }
+                }
+                Y::Map(m) => {
+                    for (k, x) in m {
+                        at.push(Seg::Key(k.clone()));
+                        out.push(at.clone());
+                        go(x, at, out);
+                        at.pop();
+                    }
+                }
+                _ => {}
+            }
+        }
+        go(y, &mut Vec::new(), &mut out);
+        out
+    }
+
+    pub fn get<'a>(y: &'a Y, p: &[Seg]) -> &'a Y {
+        let mut cur = y;
+        for s in p {
+            cur = match (cur, s) {
+                (Y::Seq(v), Seg::Idx(i)) => &v[*i],
+                (Y::Map(m), Seg::Key(k)) => &m.iter().find(|(kk, _)| kk == k).unwrap().1,
+                _ => panic!("bad path"),
+            };
+        }
+        cur
+    }
+
+    pub fn get_mut<'a>(y: &'a mut Y, p: &[Seg]) -> &'a mut Y {
+        let mut cur = y;
+        for s in p {
+            cur = match (cur, s) {
+                (Y::Seq(v), Seg::Idx(i)) => &mut v[*i],
+                (Y::Map(m), Seg::Key(k)) => &mut m.iter_mut().find(|(kk, _)| kk == k).unwrap().1,
+                _ => panic!("bad path"),
+            };
+        }
+        cur
+    }
+
+    /// Every map key of a document.
+    pub fn keys(y: &Y, out: &mut Vec<String>) {
+        match y {
+            Y::Seq(v) => v.iter().for_each(|x| keys(x, out)),
+            Y::Map(m) => {
+                for (k, x) in m {
+                    out.push(k.clone());
+                    keys(x, out);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    #[derive(Clone, Debug)]
+    pub enum Op {
+        Set(Y, String),
+        Remove,
+        Duplicate,
+        AddUnknown,
+        Empty,
+        Repeat(usize),
+        RemoveFirst,
+    }
+
+    impl Op {
+        pub fn label(&self) -> String {
+            match self {
+                Op::Set(_, l) => l.clone(),
+                Op::Remove => "removed".into(),
+                Op::Duplicate => "key-twice".into(),
+                Op::AddUnknown => "unknown-key".into(),
+                Op::Empty => "emptied".into(),
+                Op::Repeat(n) => format!("repeated-x{n}"),
+                Op::RemoveFirst => "first-element-removed".into(),
+            }
+        }
+    }
+
+    pub const UNICODE: &str = "Ünïcödé \"quoted\" back\\slash\nnew line\ttab ✓ 🚧 \u{0} <b>&amp;";
+
+    /// The mutation operators for the node at `p`.
+    pub fn ops(root: &Y, p: &[Seg]) -> Vec<Op> {
+        let set = |y: Y, l: &str| Op::Set(y, l.to_string());
+        let n = get(root, p);
+        let mut v = match n {
+            Y::Num(orig) => {
+                let neg = match orig.strip_prefix('-') {
+                    Some(x) => x.to_string(),
+                    None => format!("-{orig}"),
+                };
+                vec![
+                    set(Y::Num("0".into()), "0"),
+                    set(Y::Num("-1".into()), "-1"),
+                    set(Y::Num(neg), "negated"),
+                    set(Y::Num(".nan".into()), "nan"),
+                    set(Y::Num(".inf".into()), "inf"),
+                    set(Y::Num("-.inf".into()), "-inf"),
+                    set(Y::Num("1e300".into()), "1e300"),
+                    set(Y::Num("-1e300".into()), "-1e300"),
+                    set(Y::Num("1e-300".into()), "1e-300"),
+                    set(Y::Num("18446744073709551616".into()), "2^64"),
+                    set(Y::Num("1.7976931348623157e308".into()), "f64-max"),
+                    set(Y::Str("12".into()), "number-as-string"),
+                    set(Y::Null, "null"),
+                    set(Y::Seq(vec![]), "wrong-type-list"),
+                ]
+            }
+            Y::Str(_) => vec![
+                set(Y::Str(String::new()), "empty-string"),
+                set(Y::Str("x".repeat(100_000)), "long-string"),
+                set(Y::Str(UNICODE.into()), "unicode"),
+                set(Y::Num("5".into()), "wrong-type-number"),
+                set(Y::Seq(vec![]), "wrong-type-list"),
+                set(Y::Null, "null"),
+            ],
+            Y::Bool(b) => vec![set(Y::Bool(!b), "flipped"), set(Y::Str("maybe".into()), "wrong-type-string")],
+            Y::Null => vec![set(Y::Num("1".into()), "number")],
+            Y::Map(_) => vec![
+                set(Y::Num("5".into()), "wrong-type-number"),
+                set(Y::Str("x".into()), "wrong-type-string"),
+                set(Y::Seq(vec![]), "wrong-type-list"),
+                Op::Empty,
+                Op::AddUnknown,
+            ],
+            Y::Seq(_) => vec![
+                Op::Empty,
+                Op::Repeat(1000),
+                Op::RemoveFirst,
+                set(Y::Map(vec![]), "wrong-type-map"),
+                set(Y::Str("x".into()), "wrong-type-string"),
+            ],
+        };
+        if matches!(p.last(), Some(Seg::Key(_))) {
+            v.push(Op::Remove);
+            v.push(Op::Duplicate);
+        }
+        v
+    }
+
+    /// The document with `op` applied at `p`.
+    pub fn apply(root: &Y, p: &[Seg], op: &Op) -> Y {
+        let mut y = root.clone();
+        match op {
+            Op::Set(v, _) => *get_mut(&mut y, p) = v.clone(),
+            Op::Remove | Op::Duplicate => {
+                let Some(Seg::Key(k)) = p.last() else { panic!("not a key") };
+                let Y::Map(m) = get_mut(&mut y, &p[..p.len() - 1]) else { panic!("not a map") };
+                let i = m.iter().position(|(kk, _)| kk == k).unwrap();
+                if matches!(op, Op::Remove) {
+                    m.remove(i);
+                } else {
+                    let e = m[i].clone();
+                    m.insert(i + 1, e);
+                }
+            }
+            Op::AddUnknown => {
+                if let Y::Map(m) = get_mut(&mut y, p) {
+                    m.push(("unknwon_field".into(), Y::Num("1".into())));
+                }
+            }
+            Op::Empty => {
+                let n = get_mut(&mut y, p);
+                *n = match n {
+                    Y::Map(_) => Y::Map(vec![]),
+                    _ => Y::Seq(vec![]),
+                };
+            }
+            Op::Repeat(times) => {
+                if let Y::Seq(v) = get_mut(&mut y, p) {
+                    let orig = v.clone();
+                    v.clear();
+                    for _ in 0..*times {
+                        v.extend(orig.iter().cloned());
+                    }
+                }
+            }
+            Op::RemoveFirst => {
+                if let Y::Seq(v) = get_mut(&mut y, p) {
+                    if !v.is_empty() {
+                        v.remove(0);
+                    }
+                }
+            }
+        }
+        y
+    }
+}
+
+use yamlish::{Seg, Y};
+
+/// FNV-1a: a deterministic hash for choosing mutants.
+fn fnv(s: &str) -> u64 {
+    let mut h: u64 = 0xcbf29ce484222325;
+    for b in s.bytes() {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x100000001b3);
+    }
+    h
+}
+
+/// Chooses about `per_node` of the `n` operators of a node (all when `per_node` is 0), rotating
+/// with the node's hash so that every operator is used across the nodes of a document.
+fn choose(n: usize, per_node: usize, key: &str) -> Vec<usize> {
+    if per_node == 0 || per_node >= n {
+        return (0..n).collect();
+    }
+    let stride = n.div_ceil(per_node);
+    let h = (fnv(key) % stride as u64) as usize;
+    (0..n).filter(|i| (i + h) % stride == 0).collect()
+}
+
+/// One generated input.
+#[derive(Clone, Debug)]
+struct Mutant {
+    id: String,
+    bytes: Vec<u8>,
+}
+
+/// Mutants of a YAML document (see the README for the operators).
+fn yaml_mutants(label: &str, text: &str, per_node: usize) -> Vec<Mutant> {
+    let doc = yamlish::parse(text);
+    let mut out = Vec::new();
+    for p in yamlish::paths(&doc) {
+        let ops = yamlish::ops(&doc, &p);
+        let at = yamlish::show(&p);
+        for i in choose(ops.len(), per_node, &format!("{label} {at}")) {
+            let m = yamlish::apply(&doc, &p, &ops[i]);
+            out.push(Mutant {
+                id: format!("{label} {at} {}", ops[i].label()),
+                bytes: yamlish::emit(&m).into_bytes(),
+            });
+        }
+    }
+    // whole-file mutants
+    let whole: Vec<(&str, Vec<u8>)> = vec![
+        ("empty-file", Vec::new()),
+        ("only-comment", b"# nothing\n".to_vec()),
+        ("truncated-half", text.as_bytes()[..text.len() / 2].to_vec()),
+        ("binary-garbage", (0..4096u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect()),
+        ("non-utf8", [text.as_bytes(), b"\n# \xff\xfe\n"].concat()),
+        ("bom-crlf", [b"\xef\xbb\xbf".as_slice(), text.replace('\n', "\r\n").as_bytes()].concat()),
+        ("tabs-indent", text.replace("  ", "\t").into_bytes()),
+        ("json-instead", b"{\"name\": 1}".to_vec()),
+        ("deep-nesting", format!("name: {}{}\n", "[".repeat(100_000), "]".repeat(100_000)).into_bytes()),
+        ("alias-bomb", {
+            let mut s = String::from("a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n");
+            for i in 1..12 {
+                s.push_str(&format!("a{i}: &a{i} [{}]\n", vec![format!("*a{}", i - 1); 10].join(", ")));
+            }
+            s.push_str(text);
+            s.into_bytes()
+        }),
+        ("document-twice", format!("{text}\n---\n{text}").into_bytes()),
+        ("yaml-tags", text.replacen(": ", ": !!binary ", 1).into_bytes()),
+    ];
+    for (l, b) in whole {
+        out.push(Mutant {
+            id: format!("{label} <file> {l}"),
+            bytes: b,
+        });
+    }
+    out
+}
+
+// ================================================================================================
+// The corpus runner: parallel, time-limited, judged by the exit-code contract
+// ================================================================================================
+
+/// How a run ended, if within the contract.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Verdict {
+    /// Exit 0 with finite outputs.
+    Ok,
+    /// Exit 2 with a message naming the file and the field or line.
+    Refused,
+    /// The input was accepted and the run stopped at an output check we set up to fail
+    /// (`--csv <missing dir>/x.csv`): validation only.
+    Accepted,
+}
+
+struct Case {
+    id: String,
+    args: Vec<String>,
+    cwd: PathBuf,
+    stdin: Option<Vec<u8>>,
+    timeout: Duration,
+    /// An exit-2 message must contain this (the input's name).
+    file: String,
+    /// ... and "line" or one of these (field and element names).
+    fields: Vec<String>,
+    /// In stderr: the input was accepted (validation-only runs).
+    accepted_marker: Option<String>,
+}
+
+fn judge(c: &Case, o: &Out) -> Result<Verdict, String> {
+    if o.timed_out {
+        return Err(format!("no answer within {:?}", c.timeout));
+    }
+    if o.stderr.contains("panicked") {
+        return Err(format!("panicked: {}", truncate(&o.stderr, 600)));
+    }
+    let Some(code) = o.code else {
+        return Err(format!("killed by a signal: {}", truncate(&o.stderr, 600)));
+    };
+    match code {
+        0 => {
+            let text = o.stdout_text();
+            let bad = match serde_json::from_str::<serde_json::Value>(&text) {
+                Ok(v) => scan_json(&v),
+                Err(_) => {
+                    let mut bad = Vec::new();
+                    if text.trim_start().starts_with('{') {
+                        for l in text.lines() {
+                            match serde_json::from_str::<serde_json::Value>(l) {
+                                Ok(v) => bad.extend(scan_json(&v)),
+                                Err(e) => bad.push(format!("a line is not JSON: {e}")),
+                            }
+                        }
+                    }
+                    bad.extend(scan_text(&text));
+                    bad
+                }
+            };
+            if bad.is_empty() {
+                Ok(Verdict::Ok)
+            } else {
+                Err(format!("exit 0 with non-finite or absurd output: {bad:?}"))
+            }
+        }
+        2 => {
+            if let Some(m) = &c.accepted_marker {
+                if o.stderr.contains(m.as_str()) {
+                    return Ok(Verdict::Accepted);
+                }
+            }
+            let e = &o.stderr;
+            if !e.contains("error:") {
+                return Err(format!("exit 2 without an error message: {}", truncate(e, 600)));
+            }
+            if !e.contains(&c.file) {
+                return Err(format!("exit 2, but the message does not name the file '{}': {}", c.file, truncate(e, 600)));
+            }
+            if !(e.contains("line") || c.fields.iter().any(|w| e.contains(w.as_str()))) {
+                return Err(format!("exit 2, but the message names no field, element or line: {}", truncate(e, 600)));
+            }
+            Ok(Verdict::Refused)
+        }
+        1 => Err(format!("exit 1 (internal failure): {}", truncate(&o.stderr, 600))),
+        c => Err(format!("exit {c}: {}", truncate(&o.stderr, 600))),
+    }
+}
+
+struct Outcome {
+    id: String,
+    verdict: Result<Verdict, String>,
+    elapsed: Duration,
+}
+
+/// Runs the cases in parallel (several processes at a time).
+fn run_cases(cases: Vec<Case>) -> Vec<Outcome> {
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).clamp(2, 8) * 2;
+    let next = AtomicUsize::new(0);
+    let results = Mutex::new(Vec::with_capacity(cases.len()));
+    std::thread::scope(|sc| {
+        for _ in 0..threads {
+            sc.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::SeqCst);
+                let Some(c) = cases.get(i) else { break };
+                let mut r = Run::new(&c.args).cwd(&c.cwd).timeout(c.timeout);
+                if let Some(b) = &c.stdin {
+                    r = r.stdin(b.clone());
+                }
+                let o = r.go();
+                let verdict = judge(c, &o);
+                results.lock().unwrap().push((
+                    i,
+                    Outcome {
+                        id: c.id.clone(),
+                        verdict,
+                        elapsed: o.elapsed,
+                    },
+                ));
+            });
+        }
+    });
+    let mut r = results.into_inner().unwrap();
+    r.sort_by_key(|(i, _)| *i);
+    r.into_iter().map(|(_, o)| o).collect()
+}
+
+/// Mutants that fail today, each with the bug it shows (a substring of the mutant id). The lead
+/// fixes src/ and removes the line; a line whose mutants all pass fails the test.
+const KNOWN_FAILURES: &[(&str, &str)] = &[];
+
+/// Checks outcomes against the contract and [`KNOWN_FAILURES`]; prints a summary.
+fn assert_outcomes(corpus: &str, outcomes: &[Outcome]) {
+    let mut unexpected = Vec::new();
+    let mut known_hit: Vec<usize> = vec![0; KNOWN_FAILURES.len()];
+    let mut known_pass: Vec<usize> = vec![0; KNOWN_FAILURES.len()];
+    let (mut ok, mut refused, mut accepted, mut failed) = (0, 0, 0, 0);
+    let mut slowest = (Duration::ZERO, String::new());
+    for o in outcomes {
+        if o.elapsed > slowest.0 {
+            slowest = (o.elapsed, o.id.clone());
+        }
+        let known = KNOWN_FAILURES.iter().position(|(pat, _)| o.id.contains(pat));
+        match &o.verdict {
+            Ok(v) => {
+                match v {
+                    Verdict::Ok => ok += 1,
+                    Verdict::Refused => refused += 1,
+                    Verdict::Accepted => accepted += 1,
+                }
+                if let Some(k) = known {
+                    known_pass[k] += 1;
+                }
+            }
+            Err(e) => {
+                failed += 1;
+                match known {
+                    Some(k) => known_hit[k] += 1,
+                    None => unexpected.push(format!("{}: {e}", o.id)),
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{corpus}: {} cases: {ok} ok, {refused} refused, {accepted} accepted (validation only), {failed} failed ({} known); slowest {:.1} s ({})",
+        outcomes.len(),
+        failed - unexpected.len(),
+        slowest.0.as_secs_f64(),
+        slowest.1
+    );
+    for (k, (pat, bug)) in KNOWN_FAILURES.iter().enumerate() {
+        if known_hit[k] > 0 {
+            eprintln!("  known failure ({} cases) '{pat}': {bug}", known_hit[k]);
+        }
+    }
+    let fixed: Vec<String> = KNOWN_FAILURES
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| known_hit[*k] == 0 && known_pass[*k] > 0)
+        .map(|(_, (pat, bug))| format!("'{pat}' ({bug})"))
+        .collect();
+    assert!(
+        unexpected.is_empty(),
+        "{corpus}: {} cases broke the contract:\n{}",
+        unexpected.len(),
+        unexpected.iter().take(60).cloned().collect::<Vec<_>>().join("\n")
+    );
+    assert!(
+        fixed.is_empty(),
+        "{corpus}: known failures now pass, remove them from KNOWN_FAILURES: {}",
+        fixed.join("; ")
+    );
+}
+
+/// The task format's field names (for judging messages).
+fn task_field_words() -> Vec<String> {
+    let mut w: Vec<String> = [
+        "name", "worker", "robot", "hand_frame", "left_hand_frame", "gravity_m_s2", "stance",
+        "workstation", "obstacles", "phases", "cycles", "rest_s", "replan", "fatigue",
+        "objective", "lifts", "target_m", "targets", "object", "load_kg", "hand_force_n",
+        "left_share", "duration_s", "sex", "stature_m", "mass_kg", "strength_percentile",
+        "every_cycles", "every_s", "capacity_tolerance", "parameters", "parameters_file",
+        "k_per_min", "recovery_per_min", "recovery", "overrides", "discomfort_weight",
+        "clearance_m", "balance_margin_m", "origin", "destination", "coupling", "width_m",
+        "forward_m", "toe_out_deg", "feet", "size_m", "position_m", "rpy_rad", "radius_m",
+        "height_m", "normal", "center_m", "grip_width_m", "right_m", "left_m", "hand",
+        "obstacle", "unknown field", "missing field", "duplicate",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    w.sort();
+    w.dedup();
+    w
+}
+
+/// A scratch directory laid out like the repository (tasks/, robots/, data/), so that shipped
+/// tasks' relative robot paths resolve for their mutants.
+fn scratch_repo() -> tempfile::TempDir {
+    let d = tempdir();
+    for sub in ["tasks", "robots", "data/opensim", "recordings"] {
+        std::fs::create_dir_all(d.path().join(sub)).unwrap();
+    }
+    for f in ["robots/worker.urdf", "robots/worker.strength.yaml", "data/opensim/rajagopal2016.mapping.yaml"] {
+        std::fs::copy(root().join(f), d.path().join(f)).unwrap();
+    }
+    d
+}
+
+// ================================================================================================
+// Class 9: generated mutants of the shipped tasks, robots and recordings
+// ================================================================================================
+
+/// Validation-only cases for task mutants: `plan M.yaml --csv no_such_dir/x.csv` stops at the
+/// output check once the task has been read and validated.
+fn task_cases(dir: &Path, sub: &str, mutants: &[Mutant], fields: &[String]) -> Vec<Case> {
+    std::fs::create_dir_all(dir.join(sub)).unwrap();
+    mutants
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let name = format!("{sub}/m{i:05}.yaml");
+            std::fs::write(dir.join(&name), &m.bytes).unwrap();
+            Case {
+                id: m.id.clone(),
+                args: vec!["plan".into(), name.clone(), "--csv".into(), "no_such_dir/x.csv".into()],
+                cwd: dir.to_path_buf(),
+                stdin: None,
+                timeout: T_CHECK,
+                file: name,
+                fields: fields.to_vec(),
+                accepted_marker: Some("no_such_dir".into()),
+            }
+        })
+        .collect()
+}
+
+/// Accepted mutants worth planning: extreme values the validation let through.
+fn pick_for_planning(cases: &[Case], outcomes: &[Outcome], max: usize) -> Vec<usize> {
+    const PRIORITY: &[&str] = &[
+        "1e-300", " 0", "long-string", "unicode", "empty-string", "-1", "negated", "removed",
+        "first-element-removed", "flipped", "emptied", "number-as-string",
+    ];
+    let mut picked = Vec::new();
+    for pat in PRIORITY {
+        for (i, o) in outcomes.iter().enumerate() {
+            if picked.len() >= max {
+                return picked;
+            }
+            if matches!(o.verdict, Ok(Verdict::Accepted))
+                && o.id.ends_with(&format!(" {}", pat.trim()))
+                && !o.id.contains("repeated")
+                && !picked.contains(&i)
+                && !picked.iter().any(|&j: &usize| same_node(&cases[j].id, &cases[i].id))
+            {
+                picked.push(i);
+            }
+        }
+    }
+    picked
+}
+
+fn same_node(a: &str, b: &str) -> bool {
+    let node = |s: &str| s.rsplit_once(' ').map(|(n, _)| n.to_string()).unwrap_or_default();
+    node(a) == node(b)
+}
+
+#[test]
+fn mutants_of_the_quick_tasks_plan_or_are_refused() {
+    let dir = tempdir();
+    let fields = task_field_words();
+    let mut all = Vec::new();
+    let mut plan_cases = Vec::new();
+    for (file, per_node, plan_max) in [("quick.yaml", 0, 8), ("quick_full.yaml", 3, 4)] {
+        let text = std::fs::read_to_string(hostile(file)).unwrap();
+        let mutants = yaml_mutants(&format!("tests/data/hostile/{file}"), &text, per_node);
+        let sub = file.trim_end_matches(".yaml");
+        let cases = task_cases(dir.path(), sub, &mutants, &fields);
+        let outcomes = run_cases(cases.iter().map(clone_case).collect());
+        for i in pick_for_planning(&cases, &outcomes, plan_max) {
+            let c = &cases[i];
+            plan_cases.push(Case {
+                id: format!("{} [planned]", c.id),
+                args: vec!["plan".into(), c.file.clone(), "--no-adapt".into(), "--json".into()],
+                timeout: T_PLAN,
+                accepted_marker: None,
+                ..clone_case(c)
+            });
+        }
+        all.extend(outcomes);
+    }
+    let planned = run_cases(plan_cases);
+    assert!(planned.len() >= 6, "too few accepted mutants to plan: {}", planned.len());
+    all.extend(planned);
+    assert_outcomes("quick task mutants", &all);
+}
+
+fn clone_case(c: &Case) -> Case {
+    Case {
+        id: c.id.clone(),
+        args: c.args.clone(),
+        cwd: c.cwd.clone(),
+        stdin: c.stdin.clone(),
+        timeout: c.timeout,
+        file: c.file.clone(),
+        fields: c.fields.clone(),
+        accepted_marker: c.accepted_marker.clone(),
+    }
+}
+
+#[test]
+fn mutants_of_the_shipped_tasks_are_checked_or_refused() {
+    let dir = scratch_repo();
+    let fields = task_field_words();
+    let mut cases = Vec::new();
+    let mut names: Vec<PathBuf> = std::fs::read_dir(root().join("tasks"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "yaml"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 5);
+    for p in &names {
+        let text = std::fs::read_to_string(p).unwrap();
+        let label = format!("tasks/{}", p.file_name().unwrap().to_string_lossy());
+        let mutants = yaml_mutants(&label, &text, 1);
+        let sub = format!("tasks/{}", p.file_stem().unwrap().to_string_lossy());
+        cases.extend(task_cases(dir.path(), &sub, &mutants, &fields));
+    }
+    let outcomes = run_cases(cases);
+    assert_outcomes("shipped task mutants", &outcomes);
+}

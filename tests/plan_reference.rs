@@ -1,0 +1,321 @@
+//! The fatigue-only plan against an independent reference optimiser.
+//!
+//! `tests/data/reference/` holds a Python/SciPy/IPOPT multi-start optimiser written from
+//! `docs/optimisation-problem.md` alone (without reading `src/`), its inputs (copies of the
+//! repository's body, strength table, fatigue parameter sets and task files) and, per task, its
+//! best plan and the spread of the local optima it found (`results/<task>.json`; see
+//! `tests/data/reference/README.md` for how they were made). For every task with committed
+//! results this test checks:
+//!
+//! 1. the reference's inputs are still the repository's (otherwise the results are stale and must
+//!    be regenerated);
+//! 2. objective consistency: the reference's best postures, replayed as a recording through
+//!    `posture-opt evaluate --task`, give the total fatigue index U the reference computed for
+//!    them (two independent implementations of the statics, strength and fatigue model);
+//! 3. plan quality: `posture-opt plan --no-adapt --fatigue-only` is no worse than the MEDIAN of
+//!    the reference's whole-plan local optima (what a sound multi-start must achieve), and it
+//!    prints ours / reference best.
+//!
+//! Every number asserted against comes from the reference's own files; nothing produced by
+//! posture-opt is copied into an assertion.
+
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Relative tolerance of the objective-consistency check. Both sides evaluate exact closed forms
+/// (statics, PCHIP strength, the fatigue ODE's step solutions) in double precision on the same
+/// postures and the same piecewise-constant schedule, so they differ only by rounding: summation
+/// order over ~1 300 steps × 76 half-joints and the statics' linear algebra. posture-opt's own
+/// plans re-evaluated by the reference agree to ~1e-15; 1e-9 leaves six orders of magnitude for
+/// rounding while any modelling difference (a millimetre of segment length, a 0.1 % change of a
+/// strength, a recovery-rate change, a misread phase load) moves U by far more than 1e-6.
+const OBJECTIVE_REL_TOL: f64 = 1e-9;
+
+/// Slack of the median check: rounding only (U is reported with full precision on both sides).
+const MEDIAN_REL_SLACK: f64 = 1e-9;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn refdir() -> PathBuf {
+    root().join("tests/data/reference")
+}
+
+fn read(p: &Path) -> String {
+    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+fn yaml(p: &Path) -> Value {
+    serde_saphyr::from_str(&read(p)).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// Runs `posture-opt ARGS` in the package root; standard output as JSON.
+fn posture_opt_json(args: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_posture-opt"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("posture-opt runs");
+    assert!(
+        out.status.success(),
+        "posture-opt {}: {}\n{}",
+        args.join(" "),
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("posture-opt {}: not JSON: {e}", args.join(" ")))
+}
+
+fn num(v: &Value, what: &str) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("{what}: not a number: {v}"))
+}
+
+/// The committed results of one task.
+struct Reference {
+    key: String,
+    json: Value,
+}
+
+impl Reference {
+    fn best(&self) -> f64 {
+        num(&self.json["best_total_u_min"], "best_total_u_min")
+    }
+
+    /// The whole-plan local optima of the joint multi-start, sorted.
+    fn local_optima(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = self.json["local_optima_totals"]
+            .as_array()
+            .expect("local_optima_totals")
+            .iter()
+            .map(|x| num(x, "local optimum"))
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v
+    }
+
+    fn median(&self) -> f64 {
+        median(&self.local_optima())
+    }
+
+    fn task(&self) -> String {
+        format!("tasks/{}.yaml", self.key)
+    }
+
+    /// The best plan replayed as a recording (CSV, radians, zero-order hold): every step of every
+    /// cycle of the reference's schedule, then a closing sample at the end of the task.
+    fn recording(&self) -> String {
+        let j = &self.json;
+        let rest = j["rest_posture"].as_object().expect("rest_posture");
+        let joints: Vec<&String> = rest.keys().collect();
+        let posture = |name: &str| -> &serde_json::Map<String, Value> {
+            if name == "rest" {
+                rest
+            } else {
+                j["postures"][name]
+                    .as_object()
+                    .unwrap_or_else(|| panic!("{}: no posture for {name:?}", self.key))
+            }
+        };
+        let sched = &j["schedule"];
+        let cycles = sched["cycles"].as_u64().expect("schedule.cycles");
+        let steps = sched["steps"].as_array().expect("schedule.steps");
+        let cycle_s: f64 = steps.iter().map(|s| num(&s["duration_s"], "duration_s")).sum();
+
+        let mut csv = String::from("t_s");
+        for n in &joints {
+            write!(csv, ",{n}").unwrap();
+        }
+        csv.push_str(",force_x_n,force_y_n,force_z_n,left_force_x_n,left_force_y_n,left_force_z_n\n");
+        let mut row = |t: f64, q: &serde_json::Map<String, Value>, fr: &[f64], fl: &[f64]| {
+            write!(csv, "{t}").unwrap();
+            for n in &joints {
+                let v = q.get(n.as_str()).unwrap_or_else(|| panic!("{}: joint {n} missing", self.key));
+                write!(csv, ",{}", num(v, n)).unwrap();
+            }
+            for f in fr.iter().chain(fl) {
+                write!(csv, ",{f}").unwrap();
+            }
+            csv.push('\n');
+        };
+        let forces = |s: &Value, k: &str| -> Vec<f64> {
+            s[k].as_array().expect(k).iter().map(|x| num(x, k)).collect()
+        };
+        for c in 0..cycles {
+            let mut t = c as f64 * cycle_s;
+            for s in steps {
+                let name = s["posture"].as_str().expect("step posture");
+                row(t, posture(name), &forces(s, "right_force_n"), &forces(s, "left_force_n"));
+                t += num(&s["duration_s"], "duration_s");
+            }
+        }
+        row(cycles as f64 * cycle_s, rest, &[0.0; 3], &[0.0; 3]);
+        csv
+    }
+}
+
+fn median(v: &[f64]) -> f64 {
+    assert!(!v.is_empty(), "no local optima");
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Every task with committed reference results.
+fn references() -> Vec<Reference> {
+    let dir = refdir().join("results");
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        let Some(key) = name.strip_suffix(".json") else { continue };
+        if key.contains('.') || key == "summary" || key == "verification" {
+            continue;
+        }
+        let json: Value = serde_json::from_str(&read(&p)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        if json.get("best_total_u_min").is_none() {
+            continue;
+        }
+        out.push(Reference { key: key.to_string(), json });
+    }
+    out.sort_by(|a, b| a.key.cmp(&b.key));
+    assert!(
+        out.iter().any(|r| r.key == "shelf"),
+        "tests/data/reference/results/ has no shelf.json"
+    );
+    out
+}
+
+#[test]
+fn reference_inputs_are_the_repository_files() {
+    let inputs = refdir().join("inputs");
+    let mut stale = Vec::new();
+    let mut same_yaml = |a: PathBuf, b: PathBuf| {
+        if yaml(&a) != yaml(&b) {
+            stale.push(format!("{} differs from {}", a.display(), b.display()));
+        }
+    };
+    same_yaml(inputs.join("worker.strength.yaml"), root().join("robots/worker.strength.yaml"));
+    same_yaml(inputs.join("fatigue_sets.yaml"), root().join("data/fatigue_sets.yaml"));
+    for r in references() {
+        same_yaml(inputs.join(format!("{}.yaml", r.key)), root().join(r.task()));
+    }
+    if read(&inputs.join("worker.urdf")) != read(&root().join("robots/worker.urdf")) {
+        stale.push("inputs/worker.urdf differs from robots/worker.urdf".into());
+    }
+    // tasks without `robot:` use the generated worker; the reference holds its URDF
+    for r in references() {
+        let task = yaml(&root().join(r.task()));
+        if task.get("robot").is_some_and(|v| !v.is_null()) {
+            continue;
+        }
+        let w = &task["worker"];
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("w.urdf");
+        let pct = w.get("strength_percentile").map_or("50".to_string(), |v| v.to_string());
+        let st = Command::new(env!("CARGO_BIN_EXE_posture-opt"))
+            .args(["robot", "--sex", w["sex"].as_str().unwrap()])
+            .args(["--stature-m", &w["stature_m"].to_string()])
+            .args(["--mass-kg", &w["mass_kg"].to_string()])
+            .args(["--strength-percentile", &pct])
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(st.status.success(), "posture-opt robot: {}", String::from_utf8_lossy(&st.stderr));
+        let mine = inputs.join(format!("{}.worker.urdf", r.key));
+        if read(&out) != read(&mine) {
+            stale.push(format!("{} is not the worker {} generates", mine.display(), r.task()));
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "the reference's inputs are stale; refresh them and re-run the reference \
+         (tests/data/reference/README.md):\n  {}",
+        stale.join("\n  ")
+    );
+}
+
+#[test]
+fn reference_best_plans_evaluate_to_the_reference_totals() {
+    let mut bad = Vec::new();
+    for r in references() {
+        assert_eq!(r.json["feasible"]["ok"], Value::Bool(true), "{}: reference plan infeasible", r.key);
+        let dir = tempfile::tempdir().unwrap();
+        let csv = dir.path().join(format!("{}.csv", r.key));
+        std::fs::write(&csv, r.recording()).unwrap();
+        let ev = posture_opt_json(&["evaluate", csv.to_str().unwrap(), "--task", &r.task(), "--json"]);
+        let ours = num(&ev["total_u_min"], "total_u_min");
+        let theirs = r.best();
+        let rel = (ours - theirs).abs() / theirs.abs();
+        println!(
+            "{:<16} objective: reference {theirs:.12} min, posture-opt evaluate {ours:.12} min, \
+             relative difference {rel:.2e} (samples outside range: {})",
+            r.key, ev["samples_outside_range"]
+        );
+        if !(rel <= OBJECTIVE_REL_TOL) {
+            bad.push(format!("{}: reference {theirs} vs evaluate {ours} (rel {rel:.3e})", r.key));
+        }
+    }
+    assert!(bad.is_empty(), "objective disagreement:\n  {}", bad.join("\n  "));
+}
+
+#[test]
+fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
+    let refs = references();
+    // the planners run side by side (each is one process)
+    let ours: BTreeMap<String, (f64, Value)> = std::thread::scope(|s| {
+        let handles: Vec<_> = refs
+            .iter()
+            .map(|r| {
+                s.spawn(move || {
+                    let task = r.task();
+                    let plan = posture_opt_json(&["plan", &task, "--no-adapt", "--fatigue-only", "--json"]);
+                    let u = num(&plan["summary"]["total_u"], "summary.total_u");
+                    (r.key.clone(), (u, plan))
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    let mut bad = Vec::new();
+    for r in &refs {
+        let (u, plan) = &ours[&r.key];
+        let opt = r.local_optima();
+        let (best, med) = (r.best(), r.median());
+        // diagnostic only: the rest posture both sides hold between cycles
+        let rest_diff = plan["joints"]
+            .as_array()
+            .zip(plan["summary"]["rest_posture_rad"].as_array())
+            .map(|(names, q)| {
+                names
+                    .iter()
+                    .zip(q)
+                    .filter_map(|(n, v)| Some((r.json["rest_posture"][n.as_str()?].as_f64()? - v.as_f64()?).abs()))
+                    .fold(0.0, f64::max)
+            });
+        println!(
+            "{:<16} posture-opt {u:.6} min | reference best {best:.6}, median {med:.6} of {} local optima \
+             [{:.4} .. {:.4}], {} starts | ours/best {:.4}, ours/median {:.4} | rest posture max diff {:?} rad",
+            r.key,
+            opt.len(),
+            opt[0],
+            opt[opt.len() - 1],
+            r.json["starts"]["count"],
+            u / best,
+            u / med,
+            rest_diff,
+        );
+        if !(*u <= med * (1.0 + MEDIAN_REL_SLACK)) {
+            bad.push(format!("{}: posture-opt {u} > reference median local optimum {med}", r.key));
+        }
+    }
+    assert!(bad.is_empty(), "plan worse than the reference's median local optimum:\n  {}", bad.join("\n  "));
+}
