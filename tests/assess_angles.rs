@@ -160,13 +160,7 @@ fn deep_stoop_with_small_side_bend_is_not_a_large_side_bend() {
 /// Axial rotation of the thorax against the pelvis is the anatomical trunk twist whatever the
 /// flexion (REBA: "twisting"; RULA: "trunk is twisting"). Lumbar flexion 60° then axial rotation
 /// 20° rotates the trunk 20° about its own long axis, so the twist is 20°.
-///
-/// The module measures the twist as the heading of the shoulder line (the trunk's y axis
-/// projected on the floor): y = R_y(60°) (−sin 20°, cos 20°, 0) = (−sin 20° cos 60°, cos 20°,
-/// sin 20° sin 60°), heading atan2(sin 20° cos 60°, cos 20°) = 10.3°, half the real twist; at
-/// 15° of axial rotation it reports 7.6°, under REBA's 10° twist threshold.
 #[test]
-#[ignore = "BUG: trunk twist under flexion is the shoulder line's floor heading, not the axial rotation (60° stoop + 20° twist reports 10.3°)"]
 fn twist_in_a_stoop_is_the_axial_rotation() {
     let a = angles(&[("lumbar_flexion", 60.0), ("lumbar_axial_rotation", 20.0)]);
     assert!((a.trunk_twist_deg - 20.0).abs() < 0.5, "{}", a.trunk_twist_deg);

@@ -291,7 +291,6 @@ fn bad_rows_are_refused_with_their_line() {
 
 /// Line numbers count the file's lines, blank lines included.
 #[test]
-#[ignore = "BUG: fit::parse_rows numbers rows by record (i + 2), so a blank line before a bad row shifts the reported line"]
 fn line_numbers_count_blank_lines() {
     let text = format!("{HEADER}\ngrip,0.5,,,120,,\n\ngrip,2.0,,,120,,\n");
     let (line, _) = row_error(&text);

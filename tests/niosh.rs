@@ -719,7 +719,6 @@ cycles: 10
 /// lifting lasts 10 h has no NIOSH result; the assessment must say so rather than use the
 /// "> 2 but ≤ 8 hours" column.
 #[test]
-#[ignore = "BUG: assess_lifts clamps a task longer than 8 h to the 8-h category instead of refusing it (manual p. 14)"]
 fn task_longer_than_8_hours_has_no_weight_limit() {
     use posture_opt::assess::lifting::assess_lifts;
     use posture_opt::plan::{plan_task_with, PlanOptions, Task};

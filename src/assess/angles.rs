@@ -4,7 +4,8 @@
 //! * **Trunk**: the trunk's long axis against the vertical, in the body's sagittal and frontal
 //!   planes (the pelvis's heading, projected on the floor, sets "forward"): so a stoop that tilts
 //!   the pelvis counts as trunk flexion, as an observer would see it; side bending is the axis's
-//!   angle out of the sagittal plane. Twist: the shoulder line's heading against the pelvis's.
+//!   angle out of the sagittal plane. Twist: the thorax's rotation about its own long axis
+//!   against the pelvis (swing–twist split), whatever the flexion.
 //! * **Neck**: the head's long axis against the trunk's, in the trunk's planes; twist: the neck's
 //!   axial rotation.
 //! * **Upper arm**: the shoulder-to-elbow direction in the trunk frame: flexion is its elevation
@@ -17,7 +18,7 @@
 //!   [`UNILATERAL_SHARE`] of it).
 
 use crate::body::{forward_kinematics, BodyModel, StaticsData};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use serde::Serialize;
 
 /// A foot carrying less than this share of the weight does not bear weight (REBA's "unilateral
@@ -99,13 +100,18 @@ impl BodyAngles {
         let trunk_flexion_deg = deg(t_axis.dot(&fwd).atan2(t_axis.z));
         // out of the sagittal plane: well defined also when the trunk is flexed near 90°
         let trunk_side_bend_deg = deg(t_axis.dot(&left).clamp(-1.0, 1.0).asin());
-        // the shoulder line's heading (the frames' y axes stay near horizontal when bending)
-        let heading = |r: &Matrix3<f64>| {
-            let y = r * Vector3::y();
-            (-y.x).atan2(y.y)
+        // Twist: the thorax's rotation about its own long axis against the pelvis (the twist
+        // part of the swing–twist split of the pelvis-to-trunk rotation), so a stoop does not
+        // shrink it as a floor heading would.
+        let r_rel = nalgebra::UnitQuaternion::from_matrix(&(r_pelvis.transpose() * r_trunk));
+        let trunk_twist_deg = deg(2.0 * r_rel.k.atan2(r_rel.w));
+        let trunk_twist_deg = if trunk_twist_deg > 180.0 {
+            trunk_twist_deg - 360.0
+        } else if trunk_twist_deg < -180.0 {
+            trunk_twist_deg + 360.0
+        } else {
+            trunk_twist_deg
         };
-        let wrap = |a: f64| (a + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
-        let trunk_twist_deg = deg(wrap(heading(&r_trunk) - heading(&r_pelvis)));
         let h_axis = r_trunk.transpose() * (r_head * Vector3::z());
         let neck_flexion_deg = deg(h_axis.x.atan2(h_axis.z));
         let neck_side_bend_deg = deg(h_axis.y.clamp(-1.0, 1.0).asin());

@@ -66,7 +66,7 @@ pub fn assess_lifts(task: &Task, plan: &Plan) -> Option<Result<Lifting, NioshErr
     let mut pw = PostureWork::new(task);
     let g = task.gravity_m_s2.norm().max(1e-9);
     let hours = task.duration_s() / 3600.0;
-    let duration = match WorkDuration::from_hours(hours.clamp(1e-6, 8.0)) {
+    let duration = match WorkDuration::from_hours(hours.max(1e-6)) {
         Ok(d) => d,
         Err(e) => return Some(Err(e)),
     };

@@ -194,35 +194,56 @@ pub fn rest_advice_with(task: &Task, plan: &Plan, floor: f64, params: &[MaParams
             };
             let r_max = 10.0 * work_s;
             let any_recovery = params.iter().any(|p| p.r_at(0.0) > 0.0);
-            let (rest, note) = if feasible(0.0, &mut state) {
-                (Some(0.0), "no rest needed to stay above the floor".to_string())
-            } else if !feasible(r_max, &mut state) {
-                let why = if any_recovery {
-                    format!(
-                        "even {r_max:.0} s of rest per cycle (10x the work time) does not keep every group above the floor: a single cycle's work takes it too low; lower the load or change the layout"
-                    )
-                } else {
-                    "the fatigue model has no recovery (R = 0): rest restores nothing; give recovery_per_min in the task to size rests".to_string()
-                };
-                (None, why)
-            } else {
-                let (mut lo, mut hi) = (0.0, r_max);
-                let resolution = (1e-3 * work_s).max(0.05);
-                let mut replays = 0;
-                while hi - lo > resolution && replays < 40 {
-                    replays += 1;
-                    let mid = 0.5 * (lo + hi);
-                    if feasible(mid, &mut state) {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
+            // Feasibility need not be monotone in the rest: a rest posture that loads a group
+            // above its recovery limit tires it during rest, so a long rest can break the floor
+            // that a short one keeps. Scan upward for the first rest that keeps it, then refine.
+            let grid_s = (r_max / 200.0).max(0.1);
+            let mut first_ok = None;
+            let mut last_bad = 0.0;
+            let mut r = 0.0;
+            while r <= r_max + 1e-9 {
+                if feasible(r, &mut state) {
+                    first_ok = Some(r);
+                    break;
                 }
-                let r = (hi * 10.0).ceil() / 10.0;
-                (
-                    Some(r),
-                    "smallest rest per cycle (0.1 s steps) keeping every capacity at or above the floor, with the plan's postures".to_string(),
-                )
+                last_bad = r;
+                r += grid_s;
+            }
+            let (rest, note) = match first_ok {
+                Some(0.0) => (Some(0.0), "no rest needed to stay above the floor".to_string()),
+                None => {
+                    let why = if any_recovery {
+                        format!(
+                            "no rest up to {r_max:.0} s per cycle (10x the work time) keeps every group above the floor: a single cycle's work takes it too low, or the rest posture itself tires a group; lower the load or change the layout"
+                        )
+                    } else {
+                        "the fatigue model has no recovery (R = 0): rest restores nothing; give recovery_per_min in the task to size rests".to_string()
+                    };
+                    (None, why)
+                }
+                Some(ok) => {
+                    let (mut lo, mut hi) = (last_bad, ok);
+                    let resolution = 0.05;
+                    let mut replays = 0;
+                    while hi - lo > resolution && replays < 40 {
+                        replays += 1;
+                        let mid = 0.5 * (lo + hi);
+                        if feasible(mid, &mut state) {
+                            hi = mid;
+                        } else {
+                            lo = mid;
+                        }
+                    }
+                    // rounded up to 0.1 s, and checked there (the floor may break again above)
+                    let mut r = (hi * 10.0).ceil() / 10.0;
+                    if !feasible(r, &mut state) {
+                        r = hi;
+                    }
+                    (
+                        Some(r),
+                        "smallest rest per cycle keeping every capacity at or above the floor, with the plan's postures".to_string(),
+                    )
+                }
             };
             let c_rec =
                 rest.map(|r| replay(task, params, plan, &cycles, &f_rest, r, floor, &mut state).1);

@@ -93,7 +93,19 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
     let (c_on, c_off, c_end, c_t, c_cap) = (col("on_s"), col("off_s"), col("endurance_s"), col("t_s"), col("capacity"));
     let mut rows = Vec::new();
     for (i, rec) in rdr.records().enumerate() {
-        let line = i + 2;
+        // the file's own line (blank lines skipped by the reader count too)
+        let line = rec
+            .as_ref()
+            .ok()
+            .and_then(|r| r.position())
+            .and_then(|p| {
+                // the reader's position is where it started reading: before any blank lines
+                let start = p.byte() as usize;
+                let rest = text.get(start..)?;
+                let blank = rest.len() - rest.trim_start_matches(['\r', '\n']).len();
+                text.get(..start + blank)
+            })
+            .map_or(i + 2, |before| before.matches('\n').count() + 1);
         let bad = |problem: String| FitError::Row {
             file: file.to_string(),
             line,

@@ -22,7 +22,8 @@
 //! [`displacement_weight`]) plus an end-of-range penalty that is zero in the middle 80 % of the
 //! range and rises as `((0.1 − u)/0.1)³` toward each limit (`u` the position in the range, 0..1),
 //! replacing Marler's steeper `[0.5 sin(…) + 0.5]¹⁰⁰` bumps by a C² polynomial the SQP can
-//! follow. The task's discomfort is the mean over the cycle's phases, times the task's
+//! follow. A limit the neutral posture sits at (a straight knee or elbow) is not penalised: it
+//! is where the joint rests. The task's discomfort is the mean over the cycle's phases, times the task's
 //! `discomfort_weight` (default 0.1): in a one-phase task, one joint driven from mid-range to its
 //! limit costs as much as about 10 % more fatigue (J is the logarithm of the total), 30° of trunk
 //! twist about 1.2 %.
@@ -281,6 +282,9 @@ impl LoadCost for NoLoadCost {
 pub struct Discomfort {
     /// Per q index: Some((lower, upper, neutral, weight)) for actuated joints with a finite range.
     ranges: Vec<Option<(f64, f64, f64, f64)>>,
+    /// Per q index: whether the (lower, upper) end is penalised. A limit the neutral posture
+    /// sits at (a straight knee or elbow, a foot flat) is the joint's natural rest, not a strain.
+    ends: Vec<(bool, bool)>,
 }
 
 /// Weight of a joint's displacement term: trunk bending sideways and twisting count ten times an
@@ -319,8 +323,18 @@ impl Discomfort {
                     ))
                 }
             })
+            .collect::<Vec<_>>();
+        let ends = ranges
+            .iter()
+            .map(|r| match *r {
+                Some((lo, hi, n, _)) => {
+                    let u = (n - lo) / (hi - lo);
+                    (u >= END_ZONE, u <= 1.0 - END_ZONE)
+                }
+                None => (false, false),
+            })
             .collect();
-        Discomfort { ranges }
+        Discomfort { ranges, ends }
     }
 
     /// Value, with gradient and diagonal curvature (≥ 0) added into `grad`/`curv` scaled by `w`.
@@ -331,7 +345,7 @@ impl Discomfort {
             let range = hi - lo;
             let x = (q[k] - n) / range;
             let u = (q[k] - lo) / range;
-            let (p, dp, ddp) = end_penalty(u);
+            let (p, dp, ddp) = end_penalty(u, self.ends[k]);
             total += a * x * x + END_WEIGHT * p;
             grad[k] += w * (2.0 * a * x + END_WEIGHT * dp) / range;
             curv[k] += w * (2.0 * a + END_WEIGHT * ddp.max(0.0)) / (range * range);
@@ -346,7 +360,7 @@ impl Discomfort {
             let Some((lo, hi, n, a)) = *r else { continue };
             let range = hi - lo;
             let x = (q[k] - n) / range;
-            total += a * x * x + END_WEIGHT * end_penalty((q[k] - lo) / range).0;
+            total += a * x * x + END_WEIGHT * end_penalty((q[k] - lo) / range, self.ends[k]).0;
         }
         total
     }
@@ -359,9 +373,10 @@ impl Discomfort {
             let Some((lo, hi, _, _)) = *r else { continue };
             let range = hi - lo;
             let (dl, du) = ((q[k] - lo) / range, (hi - q[k]) / range);
-            if dl < fraction {
+            let (lower_on, upper_on) = self.ends[k];
+            if dl < fraction && lower_on {
                 out.push((k, false, dl));
-            } else if du < fraction {
+            } else if du < fraction && upper_on {
                 out.push((k, true, du));
             }
         }
@@ -370,17 +385,17 @@ impl Discomfort {
 }
 
 /// End-of-range penalty of the position `u` (0..1) in the range, with its first and second
-/// derivatives in `u`.
-fn end_penalty(u: f64) -> (f64, f64, f64) {
+/// derivatives in `u`; `(lower, upper)` say which ends are penalised.
+fn end_penalty(u: f64, (lower, upper): (bool, bool)) -> (f64, f64, f64) {
     let z = END_ZONE;
     let mut p = (0.0, 0.0, 0.0);
-    if u < z {
+    if lower && u < z {
         let t = (z - u) / z;
         p.0 += t * t * t;
         p.1 += -3.0 * t * t / z;
         p.2 += 6.0 * t / (z * z);
     }
-    if u > 1.0 - z {
+    if upper && u > 1.0 - z {
         let t = (u - (1.0 - z)) / z;
         p.0 += t * t * t;
         p.1 += 3.0 * t * t / z;
@@ -395,14 +410,14 @@ mod tests {
 
     #[test]
     fn end_penalty_is_zero_inside_and_smooth_at_the_zone() {
-        assert_eq!(end_penalty(0.5), (0.0, 0.0, 0.0));
-        assert_eq!(end_penalty(0.1).0, 0.0);
-        assert!((end_penalty(0.0).0 - 1.0).abs() < 1e-15);
-        assert!((end_penalty(1.0).0 - 1.0).abs() < 1e-15);
+        assert_eq!(end_penalty(0.5, (true, true)), (0.0, 0.0, 0.0));
+        assert_eq!(end_penalty(0.1, (true, true)).0, 0.0);
+        assert!((end_penalty(0.0, (true, true)).0 - 1.0).abs() < 1e-15);
+        assert!((end_penalty(1.0, (true, true)).0 - 1.0).abs() < 1e-15);
         let h = 1e-6;
         for &u in &[0.03, 0.95, 0.099] {
-            let fd = (end_penalty(u + h).0 - end_penalty(u - h).0) / (2.0 * h);
-            assert!((end_penalty(u).1 - fd).abs() < 1e-5);
+            let fd = (end_penalty(u + h, (true, true)).0 - end_penalty(u - h, (true, true)).0) / (2.0 * h);
+            assert!((end_penalty(u, (true, true)).1 - fd).abs() < 1e-5);
         }
     }
 

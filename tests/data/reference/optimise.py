@@ -356,23 +356,47 @@ def _sha256(path):
         return hashlib.sha256(fh.read()).hexdigest()
 
 
-def augment(res, task):
+def _stats(v):
+    v = sorted(v)
+    return dict(count=len(v), min=v[0] if v else None, median=float(np.median(v)) if v else None,
+                max=v[-1] if v else None)
+
+
+def augment(res, task, pool):
     """Adds what a consumer of results/<task>.json needs without this package: the schedule of
-    one cycle (to replay the best plan as a recording), the spread of the local optima, the
-    search settings, and the input files used (with their SHA-256)."""
+    one cycle (to replay the best plan as a recording), whether each whole-plan local optimum
+    exhausts a muscle group, the spread of the local optima, and the input files used (with their
+    SHA-256). pool: distinct phase name -> list of (label, posture dict), as in <task>.pool.json;
+    a whole-plan local optimum's postures carry its start label ("joint:<family>")."""
     res["schedule"] = task.schedule()
-    joint = sorted(res.get("local_optima_totals", []))
+    prob = M.Problem(task)
+    b = task.body
+    for d in res.get("joint_local_optima", []):
+        qs = []
+        for g in task.groups:
+            q = [p for lab, p in pool[g["name"]] if lab == d["start"]]
+            qs.append(b.q_from_dict(q[0]) if q else None)
+        if any(q is None for q in qs):
+            continue
+        rep = prob.evaluate(qs)
+        assert abs(rep["total_u_min"] - d["total_u_min"]) <= 1e-9 * abs(d["total_u_min"]), d
+        d["exhausted"] = rep["exhausted"]
+        d["exhaustion_time_min"] = rep["exhaustion_time_min"]
+        d["exhausted_half_joints"] = sorted(rep["exhausted_half_joints"])
+    joint = [d["total_u_min"] for d in res.get("joint_local_optima", [])]
+    sustainable = [d["total_u_min"] for d in res.get("joint_local_optima", [])
+                   if d.get("exhausted") is False]
     res["spread"] = dict(
-        joint_local_optima=dict(count=len(joint),
-                                min=joint[0] if joint else None,
-                                median=float(np.median(joint)) if joint else None,
-                                max=joint[-1] if joint else None),
+        joint_local_optima=_stats(joint),
+        sustainable_joint_local_optima=_stats(sustainable),
         phase_local_optima={name: dict(count=len(v), min=v[0] if v else None,
                                        median=float(np.median(v)) if v else None,
                                        max=v[-1] if v else None)
                             for name, v in res.get("phase_local_optima_totals", {}).items()},
         note="joint_local_optima: total U [min] of every feasible whole-plan local optimum found "
-             "by the joint multi-start (stage 1, one per seed family); phase_local_optima: total U "
+             "by the joint multi-start (stage 1, one per seed family); sustainable_joint_local_optima: "
+             "those that exhaust no muscle group (capacity stays above load all task); "
+             "phase_local_optima: total U "
              "with one distinct phase replaced by each posture of its pool (the other phases at "
              "the best plan), distinct to 1e-6 min")
     urdf = task.body.urdf_path
@@ -401,7 +425,9 @@ def main():
     if a.augment_only:
         with open(out) as fh:
             res = json.load(fh)
-        res = augment(res, M.load_task(key))
+        with open(out.replace(".json", ".pool.json")) as fh:
+            pool = {g: [(d["label"], d["posture"]) for d in v] for g, v in json.load(fh).items()}
+        res = augment(res, M.load_task(key), pool)
         with open(out, "w") as fh:
             json.dump(res, fh, indent=1)
         return
@@ -414,7 +440,8 @@ def main():
 
     s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset)
     res, rep = s.run()
-    res = augment(res, s.t)
+    res = augment(res, s.t, {g["name"]: [(lab, s.b.q_to_dict(q)) for q, lab in s.phase_pool[gi]]
+                             for gi, g in enumerate(s.t.groups)})
     with open(out.replace(".json", ".pool.json"), "w") as fh:
         json.dump(s.pool_json(), fh)
     with open(out, "w") as fh:
