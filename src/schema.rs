@@ -538,6 +538,10 @@ fn cell(s: &str) -> String {
 
 /// `" (did you mean 'x'?)"` when one of `candidates` is close to `word`, else "".
 pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> String {
+    // a typo is short; comparing a long string costs O(n·m) for no useful hint
+    if word.chars().count() > 64 {
+        return String::new();
+    }
     let best = candidates
         .map(|c| (strsim::normalized_damerau_levenshtein(word, c), c))
         .filter(|(s, c)| *s >= 0.5 || c.starts_with(word) || word.starts_with(c))
@@ -566,16 +570,20 @@ pub fn explain_parse_error(message: &str) -> String {
         let Some(lp) = message.find(list_marker) else {
             continue;
         };
-        let list = &message[lp + list_marker.len()..];
+        // the expected names, backtick-quoted (serde) or bare (the YAML parser), up to the line end
+        let list = message[lp + list_marker.len()..].lines().next().unwrap_or("");
         let names: Vec<&str> = list
-            .split('`')
-            .enumerate()
-            .filter(|(i, _)| i % 2 == 1)
-            .map(|(_, s)| s)
+            .split(',')
+            .map(|n| n.trim().trim_matches('`'))
+            .filter(|n| !n.is_empty())
             .collect();
         let hint = did_you_mean(word, names.iter().copied());
         if !hint.is_empty() {
-            return format!("{message}{hint}");
+            // the hint goes at the end of the message's first line
+            return match message.split_once('\n') {
+                Some((first, rest)) => format!("{first}{hint}\n{rest}"),
+                None => format!("{message}{hint}"),
+            };
         }
         break;
     }

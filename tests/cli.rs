@@ -1,4 +1,4 @@
-//! The command line: exit codes and the JSON contract of DESIGN §6.
+//! The command line: exit codes and the JSON contract of docs/interface.md.
 
 mod common;
 use common::run;

@@ -1,0 +1,204 @@
+//! The planner's answers checked against things it does not compute itself: the timeline against
+//! hold-by-hold replay of its own postures, its KKT claims against its settings, determinism, the
+//! solver's precision, and monotone families (a heavier load can never be planned to tire less;
+//! a shelf moved in small steps does not flip the verdict). No total is copied from a run.
+
+use posture_opt::fatigue::{MaParams, MaState};
+use posture_opt::plan::qp::QpPrecision;
+use posture_opt::plan::sqp::SqpSettings;
+use posture_opt::plan::{plan_task_with, Plan, PlanOptions, Task};
+use std::path::Path;
+
+fn task_from(dir: &Path, name: &str, yaml: &str) -> Task {
+    let path = dir.join(format!("{name}.yaml"));
+    std::fs::write(&path, yaml).unwrap();
+    Task::from_file(&path).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// One phase (the right hand holds `load_kg` at `target`) and a rest, `cycles` times.
+fn one_phase(load_kg: f64, target: [f64; 3], hold_s: f64, rest_s: f64, cycles: u32) -> String {
+    format!(
+        "name: hold\nworker: {{sex: female, stature_m: 1.62, mass_kg: 60.0}}\nworkstation:\n  obstacles:\n    - {{name: floor, plane: {{normal: [0, 0, 1]}}, position_m: [0, 0, 0]}}\nphases:\n  - {{name: hold, target_m: [{}, {}, {}], load_kg: {load_kg}, duration_s: {hold_s}}}\nrest_s: {rest_s}\ncycles: {cycles}\n",
+        target[0], target[1], target[2]
+    )
+}
+
+fn held(baselines: bool) -> PlanOptions {
+    PlanOptions {
+        adapt: false,
+        baselines,
+        ..PlanOptions::default()
+    }
+}
+
+/// Replays the plan's steps hold by hold (each step's posture loads, each half-joint's k and
+/// recovery as reported) and compares every step's capacity and U.
+fn assert_timeline_is_the_replay(plan: &Plan, what: &str) {
+    let params: Vec<MaParams> = plan
+        .half_joints
+        .iter()
+        .map(|h| MaParams::with_recovery(h.k_per_min, h.recovery).unwrap())
+        .collect();
+    let mut state = vec![MaState::FRESH; params.len()];
+    let st = &plan.steps;
+    for i in 0..st.t_s.len() {
+        let loads = &plan.postures[st.posture[i]].load;
+        for (h, p) in params.iter().enumerate() {
+            p.hold(&mut state[h], loads[h], st.duration_s[i]);
+            let (c, u) = (st.capacity[i][h], st.fatigue_u_min[i][h]);
+            assert!(
+                (c - state[h].capacity).abs() <= 1e-9 * state[h].capacity.max(1e-12),
+                "{what}: step {i}, {}: capacity {c} vs replay {}",
+                plan.half_joints[h].id,
+                state[h].capacity
+            );
+            assert!(
+                (u - state[h].fatigue_u_min).abs() <= 1e-9 * state[h].fatigue_u_min.max(1e-9),
+                "{what}: step {i}, {}: U {u} vs replay {}",
+                plan.half_joints[h].id,
+                state[h].fatigue_u_min
+            );
+        }
+    }
+    let total: f64 = state.iter().map(|s| s.fatigue_u_min).sum();
+    assert!(
+        (plan.summary.total_u - total).abs() <= 1e-9 * total,
+        "{what}: total U {} vs replay {total}",
+        plan.summary.total_u
+    );
+}
+
+#[test]
+fn the_timeline_is_the_hold_by_hold_replay_of_the_plans_postures() {
+    let dir = tempfile::tempdir().unwrap();
+    let task = task_from(dir.path(), "hold", &one_phase(3.0, [0.40, -0.20, 1.05], 4.0, 2.0, 30));
+    for adapt in [false, true] {
+        let plan = plan_task_with(&task, PlanOptions { adapt, baselines: false, ..PlanOptions::default() }).unwrap();
+        assert_timeline_is_the_replay(&plan, if adapt { "adaptive" } else { "held" });
+    }
+    // and a shipped multi-phase task with a pushing force
+    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
+    let plan = plan_task_with(&task, held(false)).unwrap();
+    assert_timeline_is_the_replay(&plan, "bench assembly");
+}
+
+/// A phase reported converged met the documented KKT test; every phase reports its residual and
+/// iterations; and the converged ones are the rule on a shipped task.
+#[test]
+fn converged_phases_meet_the_kkt_tolerance() {
+    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
+    let plan = plan_task_with(&task, held(false)).unwrap();
+    let tol = SqpSettings::default().tol_kkt;
+    let mut converged = 0;
+    for p in &plan.summary.phases {
+        assert!(p.kkt_residual.is_finite() && p.kkt_residual >= 0.0, "{}", p.phase);
+        assert!(p.iterations >= 1, "{}", p.phase);
+        if p.converged {
+            converged += 1;
+            assert!(p.kkt_residual <= tol, "{}: converged with KKT residual {} > {tol}", p.phase, p.kkt_residual);
+        }
+        assert!(p.hand_error_m < 0.01, "{}: hand error {}", p.phase, p.hand_error_m);
+    }
+    assert!(converged >= plan.summary.phases.len() - 1, "{converged} of {} converged", plan.summary.phases.len());
+    // coordination passes never raise the objective
+    for w in plan.summary.passes.windows(2) {
+        assert!(w[1] <= w[0] * (1.0 + 1e-9), "passes {:?}", plan.summary.passes);
+    }
+}
+
+#[test]
+fn planning_is_deterministic() {
+    let dir = tempfile::tempdir().unwrap();
+    let task = task_from(dir.path(), "hold", &one_phase(2.0, [0.45, -0.25, 1.20], 5.0, 3.0, 20));
+    let a = plan_task_with(&task, held(false)).unwrap();
+    let b = plan_task_with(&task, held(false)).unwrap();
+    assert_eq!(a.summary.total_u.to_bits(), b.summary.total_u.to_bits());
+    assert_eq!(a.summary.phases[0].q_rad, b.summary.phases[0].q_rad);
+}
+
+/// Settings that only change the QP solver's precision must not change the plan's total by more
+/// than 1e-4 (relative) nor flip the exhaustion verdict.
+#[test]
+fn the_solvers_precision_does_not_decide_the_plan() {
+    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
+    let plan_with = |tol: f64| {
+        let sqp = SqpSettings { precision: QpPrecision { tol_gap: tol, tol_feas: tol }, ..SqpSettings::default() };
+        plan_task_with(&task, PlanOptions { sqp, ..held(false) }).unwrap()
+    };
+    let (a, b) = (plan_with(1e-9), plan_with(1e-8));
+    let rel = (a.summary.total_u - b.summary.total_u).abs() / a.summary.total_u;
+    assert!(rel <= 1e-4, "total U {} vs {} (relative {rel:.1e})", a.summary.total_u, b.summary.total_u);
+    assert_eq!(a.summary.exhaustion.is_some(), b.summary.exhaustion.is_some());
+}
+
+/// Any posture that holds a heavier load also holds a lighter one with less fatigue in every
+/// group, so the optimum can only rise with the load: a planner caught in a worse local minimum
+/// for a lighter load breaks this.
+#[test]
+fn a_heavier_load_is_never_planned_to_tire_less() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut last = 0.0;
+    for (i, kg) in [0.5, 1.5, 2.5, 3.5, 4.5].into_iter().enumerate() {
+        let task = task_from(dir.path(), &format!("load{i}"), &one_phase(kg, [0.45, -0.25, 1.10], 5.0, 3.0, 40));
+        let plan = plan_task_with(
+            &task,
+            PlanOptions { adapt: false, fatigue_only: true, baselines: false, ..PlanOptions::default() },
+        )
+        .unwrap();
+        let u = plan.summary.total_u;
+        assert!(u >= last * (1.0 - 1e-3), "{kg} kg: U {u} below the lighter load's {last}");
+        last = u;
+    }
+}
+
+/// A shelf moved up in 5 cm steps: the totals change smoothly (no jump bigger than a few times
+/// the neighbours' steps) and the verdict does not flip back and forth.
+#[test]
+fn a_target_moved_in_small_steps_gives_smooth_totals() {
+    let dir = tempfile::tempdir().unwrap();
+    let heights = [0.95, 1.00, 1.05, 1.10, 1.15, 1.20, 1.25];
+    let mut totals = Vec::new();
+    let mut verdicts = Vec::new();
+    for (i, z) in heights.iter().enumerate() {
+        let task = task_from(dir.path(), &format!("h{i}"), &one_phase(3.0, [0.45, -0.25, *z], 5.0, 3.0, 40));
+        let plan = plan_task_with(&task, held(false)).unwrap();
+        totals.push(plan.summary.total_u);
+        verdicts.push(plan.summary.exhaustion.is_some());
+    }
+    let flips = verdicts.windows(2).filter(|w| w[0] != w[1]).count();
+    assert!(flips <= 1, "verdict flips {flips} times: {verdicts:?}");
+    let steps: Vec<f64> = totals.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
+    let mean = steps.iter().sum::<f64>() / steps.len() as f64;
+    let largest = steps.iter().cloned().fold(0.0, f64::max);
+    let typical = totals.iter().sum::<f64>() / totals.len() as f64;
+    assert!(
+        largest <= 3.0 * mean + 0.02 * typical,
+        "totals {totals:?}: a jump of {largest} against a mean step of {mean}"
+    );
+}
+
+/// Whole shifts of 12 h and 24 h: the plan's timeline is still the exact replay of its postures,
+/// every number is finite, and the plan is never worse than the fatigue-unaware baseline (the
+/// same optimiser blind to fatigue), nor exhausted where that baseline is not.
+#[test]
+fn twelve_and_twenty_four_hour_shifts_plan_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    for hours in [12u32, 24] {
+        let cycles = hours * 3600 / 20;
+        let task = task_from(dir.path(), &format!("shift{hours}"), &one_phase(2.0, [0.40, -0.20, 1.05], 8.0, 12.0, cycles));
+        assert!((task.duration_s() - f64::from(hours) * 3600.0).abs() < 1e-6);
+        let plan = plan_task_with(&task, held(true)).unwrap();
+        assert_timeline_is_the_replay(&plan, &format!("{hours} h"));
+        assert!(plan.summary.total_u.is_finite());
+        let blind = plan.summary.baselines.iter().find(|b| b.name == "fatigue_unaware").expect("the fatigue-unaware baseline");
+        if blind.exhaustion.is_none() {
+            assert!(plan.summary.exhaustion.is_none(), "{hours} h: the plan exhausts where the fatigue-blind one does not");
+            assert!(
+                plan.summary.total_u <= blind.total_u * (1.0 + 1e-6),
+                "{hours} h: U {} above the fatigue-blind baseline's {}",
+                plan.summary.total_u,
+                blind.total_u
+            );
+        }
+    }
+}
