@@ -340,7 +340,7 @@ fn the_shipped_worker_is_the_generated_50th_percentile_man() {
         let line = generated.lines().zip(shipped.lines()).position(|(a, b)| a != b);
         panic!(
             "robots/worker.urdf is not what `posture-opt robot` generates for the 50th-percentile man \
-             (regenerate it with `posture-opt robot --sex male --stature-m 1.755 --mass-kg 78 -o robots/worker.urdf`); \
+             (regenerate it with `posture-opt robot --sex male --stature-m 1.755 --mass-kg 78 --out robots/worker.urdf`); \
              first difference at line {:?}:\n  generated: {:?}\n  shipped:   {:?}",
             line.map(|l| l + 1),
             line.and_then(|l| generated.lines().nth(l)),

@@ -9,7 +9,7 @@ For a step held at constant f, R is constant and the exact solution is
     c(t) = c_inf + (c0 - c_inf) exp(-(k f + R) t),   c_inf = R / (k f + R).
 Exhaustion = first time c falls to f.  Intermittent tasks are simulated step by step with this closed form.
 
-Reads every published data point from the CSV files listed in tests/data/fatigue_fit/README.md (looked up
+Reads every published data point from the CSV files (looked up
 in tests/data/fatigue_fit/, then tests/data/fatigue/literature/), fits
     * k per region (Frey-Law & Avin 2010 power curves, 20-80 %MVC),
     * the recovery parameters of several candidate forms of R(f),

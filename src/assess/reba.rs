@@ -104,7 +104,7 @@
 //! * Upper-arm *rotation* (the paper's "abducted **or rotated**") is not an
 //!   input; only abduction is scored.
 //!
-//! # How posture-opt computes the inputs (worker of `worker_joints.md`)
+//! # How posture-opt computes the inputs (the generated worker, docs/body.md)
 //!
 //! World frame x forward, y left, z up; q = 0 is upright standing, arms
 //! hanging, palms facing the thighs.

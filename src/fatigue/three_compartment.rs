@@ -10,7 +10,7 @@
 //! * during rest (`TL = 0`) the recovery rate becomes `r·R` (Looft et al. 2018).
 //!
 //! Capacity is the residual capacity `MA + MR = 1 − MF`. F and R per joint: Frey-Law, Looft &
-//! Heitsman (2012), J Biomech 45:1803, Table 2 (see `shared/reference/fatigue-parameters.md`).
+//! Heitsman (2012), J Biomech 45:1803, Table 1 (see `docs/fatigue-parameters.md`).
 //! The controller is discontinuous, so there is no closed form for arbitrary loads: [`ThreeCompartment::hold`]
 //! integrates with classic RK4 at a fixed sub-step of at most [`ThreeCompartment::MAX_SUBSTEP_S`]
 //! (stable and accurate for LD = LR = 10 s⁻¹; checked against the sustained-load closed form in

@@ -518,7 +518,7 @@ impl<'t> Planner<'t> {
                 t.hand_links[0].as_ref().map(|h| h.1.clone()),
                 t.hand_links[1].as_ref().map(|h| h.1.clone()),
             ],
-            fatigue_model: "ma2009 with load-dependent recovery".into(),
+            fatigue_model: fatigue_model_name(&t.fatigue),
             fatigue_parameters: t.fatigue_choice.clone(),
             joints: t.joint_names(),
             half_joint_ids: t.half_joint_ids(),
@@ -698,6 +698,19 @@ fn describe_contact(t: &Task, link: usize, other: &Other) -> String {
 /// Plans a task with the default options (adaptive, discomfort on, baselines).
 pub fn plan_task(task: &Task) -> Result<Plan, PlanError> {
     plan_task_with(task, PlanOptions::default())
+}
+
+/// The fatigue model in words: the paper's, with the recovery forms its parameters use.
+fn fatigue_model_name(params: &[crate::fatigue::MaParams]) -> String {
+    use crate::fatigue::Recovery;
+    let perfusion = params.iter().any(|p| matches!(p.recovery, Recovery::Perfusion { .. }));
+    let constant = params.iter().any(|p| matches!(p.recovery, Recovery::Constant { .. }));
+    match (perfusion, constant) {
+        (false, false) => "ma2009 (no recovery)".into(),
+        (true, false) => "ma2009 with load-dependent (perfusion-limited) recovery".into(),
+        (false, true) => "ma2009 with constant-rate recovery".into(),
+        (true, true) => "ma2009 with perfusion-limited and constant-rate recovery".into(),
+    }
 }
 
 /// Plans a task with the given options.

@@ -21,7 +21,7 @@ const RAJAGOPAL_YAML: &str = include_str!(concat!(
     "/data/opensim/rajagopal2016.mapping.yaml"
 ));
 
-/// The worker's joints in q order (worker_joints.md).
+/// The worker's joints in q order (docs/body.md).
 const WORKER: [&str; 38] = [
     "pelvis_tx",
     "pelvis_ty",
