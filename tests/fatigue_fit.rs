@@ -138,10 +138,9 @@ fn noisy_data_cover_the_known_parameters() {
 /// The same with intermittent endurance rows. Their predicted endurance jumps (by up to an off
 /// period) where exhaustion moves from one work period to the next; with this seed the least-squares
 /// optimum sits on such a jump (knee, 45 %MVC 15 s on / 5 s off: 185.9 s just below the fitted k,
-/// 175.0 s just above) and the finite-difference Jacobian across it makes the knee's interval
-/// [0.945318, 0.945325] — 7e−6 wide, excluding the true 0.95.
+/// 175.0 s just above): a derivative taken across it alone would shrink the knee's interval to
+/// 7e−6 and exclude the true 0.95.
 #[test]
-#[ignore = "BUG: fit's confidence interval collapses (width ~1e-5) when the optimum sits on a jump of an intermittent endurance prediction"]
 fn noisy_intermittent_endurance_data_cover_the_known_parameters() {
     check_noisy_cover("synthetic_noisy.csv");
 }

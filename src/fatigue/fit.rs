@@ -21,7 +21,10 @@
 //! predicted endurance beyond 24 h counts as 24 h. **Method**: Levenberg–Marquardt on the log
 //! parameters with a finite-difference Jacobian. **Confidence intervals** (95 %): the
 //! asymptotic covariance `s² (JᵀJ)⁻¹`, `s² = SSR/(n − p)`, with Student's t for n − p degrees of
-//! freedom, on the log parameters, then exponentiated (so they stay positive).
+//! freedom, on the log parameters, then exponentiated (so they stay positive). Intermittent
+//! endurance rows predict a staircase in the parameters (exhaustion moves from one work period
+//! to the next); their Jacobian rows take the slope over ±0.1 in the log parameters, so a fit
+//! whose optimum sits on a step does not report a collapsed interval.
 
 use super::ma::{MaParams, MaState, Recovery, K_MAX_PER_MIN, K_MIN_PER_MIN};
 use super::params::{ParameterSet, RecoverySpec, RegionK};
@@ -378,8 +381,7 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     let mut cost = ssr(&r);
     let mut lambda = 1e-3;
     let (mut iterations, mut converged) = (0, false);
-    let jacobian = |theta: &[f64], jac: &mut nalgebra::DMatrix<f64>, r2: &mut [f64]| {
-        let h = 1e-6;
+    let jacobian = |theta: &[f64], jac: &mut nalgebra::DMatrix<f64>, r2: &mut [f64], h: f64| {
         let mut t = theta.to_vec();
         let mut rp = vec![0.0; n];
         for j in 0..np {
@@ -395,7 +397,7 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     };
     while iterations < 200 {
         iterations += 1;
-        jacobian(&theta, &mut jac, &mut r2);
+        jacobian(&theta, &mut jac, &mut r2, 1e-6);
         let jt = jac.transpose();
         let jtj = &jt * &jac;
         let g = &jt * nalgebra::DVector::from_column_slice(&r);
@@ -435,8 +437,21 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
             break;
         }
     }
-    // covariance
-    jacobian(&theta, &mut jac, &mut r2);
+    // Covariance. The predicted endurance of intermittent work is a staircase in the
+    // parameters (exhaustion moves from one work period to the next, jumping by an off period):
+    // its local derivative is zero or a jump. Those rows take the slope over ±0.1 in ln k
+    // (several periods' steps averaged), the smooth rows their local derivative.
+    jacobian(&theta, &mut jac, &mut r2, 1e-6);
+    let stepped: Vec<usize> = (0..n)
+        .filter(|&i| matches!(rows[i].what, Measured::EnduranceS(_)) && rows[i].cycle_s.is_some_and(|(_, off)| off > 0.0))
+        .collect();
+    if !stepped.is_empty() {
+        let mut wide = nalgebra::DMatrix::<f64>::zeros(n, np);
+        jacobian(&theta, &mut wide, &mut r2, 0.1);
+        for &i in &stepped {
+            jac.set_row(i, &wide.row(i));
+        }
+    }
     let dof = (n - np) as f64;
     let s2 = cost / dof;
     let cov = (jac.transpose() * &jac).try_inverse();

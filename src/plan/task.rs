@@ -473,7 +473,8 @@ impl Task {
         let p = path.display().to_string();
         let file: TaskFile = serde_saphyr::from_str(text).map_err(|e| TaskError::Parse {
             path: p.clone(),
-            message: crate::schema::explain_parse_error(&e.to_string()),
+            // the parser's excerpt names its source `<input>`: name the file instead
+            message: crate::schema::explain_parse_error(&e.to_string()).replace("<input>", &p),
         })?;
         Self::from_task_file(file, path)
     }
