@@ -666,7 +666,7 @@ def statics(
     * ``gravity`` -- [m/s²], default (0, 0, -9.81).
 
     Returns the document (``frame``, ``position_m``, ``joints`` -- name, q_rad,
-    gravity_torque_nm, load_torque_nm, torque_nm --, ``jacobian`` name -> column) with
+    gravity_torque_nm, load_torque_nm, torque_nm --, ``jacobian`` three rows x, y, z) with
     ``position_m`` as an array, plus arrays in joint order: ``joint_names``, ``q_rad``,
     ``gravity_torque_nm``, ``load_torque_nm``, ``torque_nm`` and ``jacobian_matrix`` (3 x n).
     """
@@ -702,5 +702,6 @@ def statics(
     doc["joint_names"] = [j["name"] for j in joints]
     for k in ("q_rad", "gravity_torque_nm", "load_torque_nm", "torque_nm"):
         doc[k] = np.array([j[k] for j in joints], dtype=np.float64)
-    doc["jacobian_matrix"] = np.array([doc["jacobian"][j["name"]] for j in joints], dtype=np.float64).reshape(-1, 3).T
+    # the JSON's jacobian is three rows (x, y, z) with one column per joint
+    doc["jacobian_matrix"] = np.asarray(doc["jacobian"], dtype=np.float64).reshape(3, len(joints))
     return doc

@@ -122,11 +122,7 @@ struct PyTask {
 }
 
 fn parse_task(text: &str, path: &Path) -> Result<(TaskFile, Task), TaskError> {
-    let p = path.display().to_string();
-    let file: TaskFile = serde_saphyr::from_str(text).map_err(|e| TaskError::Parse {
-        path: p,
-        message: posture_opt::schema::explain_parse_error(&e.to_string()),
-    })?;
+    let file = TaskFile::from_yaml_str(text, path)?;
     let task = Task::from_task_file(file.clone(), path)?;
     Ok((file, task))
 }

@@ -435,6 +435,18 @@ pub struct Task {
     pub lifts: Vec<Lift>,
 }
 
+impl TaskFile {
+    /// Parses task YAML (not yet validated); `path` names it in messages.
+    pub fn from_yaml_str(text: &str, path: &Path) -> Result<Self, TaskError> {
+        let p = path.display().to_string();
+        serde_saphyr::from_str(text).map_err(|e| TaskError::Parse {
+            path: p.clone(),
+            // the parser's excerpt names its source `<input>`: name the file instead
+            message: crate::schema::explain_parse_error(&e.to_string()).replace("<input>", &p),
+        })
+    }
+}
+
 impl Task {
     /// Length of one cycle \[s\].
     pub fn cycle_s(&self) -> f64 {
@@ -470,13 +482,7 @@ impl Task {
 
     /// Parses and validates task YAML; `path` names it in messages and locates a relative robot.
     pub fn from_yaml_str(text: &str, path: &Path) -> Result<Self, TaskError> {
-        let p = path.display().to_string();
-        let file: TaskFile = serde_saphyr::from_str(text).map_err(|e| TaskError::Parse {
-            path: p.clone(),
-            // the parser's excerpt names its source `<input>`: name the file instead
-            message: crate::schema::explain_parse_error(&e.to_string()).replace("<input>", &p),
-        })?;
-        Self::from_task_file(file, path)
+        Self::from_task_file(TaskFile::from_yaml_str(text, path)?, path)
     }
 
     /// Validates a parsed task; `path` locates the robot and names the file in messages.
