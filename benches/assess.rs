@@ -3,12 +3,12 @@
 //! whole-body worker, and the per-phase and whole assessment of a planned task
 //! (`tasks/shelf.yaml`).
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{Criterion, black_box, criterion_group, criterion_main};
 use posture_opt::assess::angles::BodyAngles;
-use posture_opt::assess::low_back::{low_back, BackParams, LumbarLoad};
+use posture_opt::assess::low_back::{BackParams, LumbarLoad, low_back};
 use posture_opt::assess::niosh::{
-    assess_lift, composite, Coupling as NioshCoupling, EquationForm, Lift, LiftGeometry,
-    WorkDuration, KG_PER_LB, M_PER_IN,
+    Coupling as NioshCoupling, EquationForm, KG_PER_LB, Lift, LiftGeometry, M_PER_IN, WorkDuration,
+    assess_lift, composite,
 };
 use posture_opt::assess::phase::assess_phases;
 use posture_opt::assess::reba::{
@@ -17,7 +17,7 @@ use posture_opt::assess::reba::{
 use posture_opt::assess::rula::{self, RulaActivity, RulaPosture};
 use posture_opt::assess::{assess, rest::rest_advice};
 use posture_opt::body::{BodyModel, StaticsData};
-use posture_opt::plan::{plan_task, Task};
+use posture_opt::plan::{Task, plan_task};
 
 fn rula_posture() -> RulaPosture {
     RulaPosture {
@@ -95,7 +95,9 @@ fn bench_scores(c: &mut Criterion) {
         held_s: 3.0,
         repeats_per_min: 6.0,
     };
-    g.bench_function("rula_score", |b| b.iter(|| rula::score(black_box(&rp), &ra)));
+    g.bench_function("rula_score", |b| {
+        b.iter(|| rula::score(black_box(&rp), &ra))
+    });
 
     let bp = reba_posture();
     let ba = RebaActivity {
@@ -167,8 +169,7 @@ fn bench_scores(c: &mut Criterion) {
 }
 
 fn bench_plan_assessment(c: &mut Criterion) {
-    let task =
-        Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf.yaml")).unwrap();
+    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf.yaml")).unwrap();
     let plan = plan_task(&task).unwrap();
     let mut g = c.benchmark_group("assess_plan");
     g.sample_size(10);

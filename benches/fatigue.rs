@@ -1,7 +1,7 @@
 //! Half-joint fatigue updates per second (Ma et al. exact update).
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use posture_opt::fatigue::{hold_all, MaParams, MaState};
+use criterion::{Criterion, Throughput, black_box, criterion_group, criterion_main};
+use posture_opt::fatigue::{MaParams, MaState, hold_all};
 
 fn bench(c: &mut Criterion) {
     // 16 half-joints (the default worker's 8 joints × 2 directions), mixed loads, 1 s steps.

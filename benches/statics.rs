@@ -2,10 +2,10 @@
 //! torques with a load in each hand, and the analytic torque derivative. Compare with Pinocchio
 //! on the same URDF in the same run (see docs/body.md, "Speed").
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::Vector3;
 use posture_opt::body::{
-    holding_torque_derivative, holding_torques, BodyModel, PointLoad, StaticsData, GRAVITY_M_S2,
+    BodyModel, GRAVITY_M_S2, PointLoad, StaticsData, holding_torque_derivative, holding_torques,
 };
 use std::hint::black_box;
 

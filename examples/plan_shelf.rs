@@ -1,5 +1,5 @@
 //! Plans tasks/shelf.yaml (or the task given) from library code and prints the summary.
-use posture_opt::plan::{plan_task, Task};
+use posture_opt::plan::{Task, plan_task};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
@@ -17,7 +17,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         dt_s
     );
     for b in &plan.summary.baselines {
-        println!("  {}: U {:.3} min ({:+.1} %)", b.name, b.total_u, 100.0 * b.change);
+        println!(
+            "  {}: U {:.3} min ({:+.1} %)",
+            b.name,
+            b.total_u,
+            100.0 * b.change
+        );
     }
     Ok(())
 }

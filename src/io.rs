@@ -89,16 +89,16 @@ pub fn read_text(path: &Path) -> Result<String, IoError> {
     String::from_utf8(bytes).map_err(|e| {
         let upto = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = upto.iter().filter(|&&b| b == b'\n').count() + 1;
-        read_err(path, format!("is not UTF-8 text (invalid byte on line {line})"))
+        read_err(
+            path,
+            format!("is not UTF-8 text (invalid byte on line {line})"),
+        )
     })
 }
 
 /// Identity of an existing file (device and inode on Unix; the canonical path elsewhere).
 #[derive(Debug, Clone, PartialEq, Eq)]
-struct FileId(
-    #[cfg(unix)] (u64, u64),
-    #[cfg(not(unix))] PathBuf,
-);
+struct FileId(#[cfg(unix)] (u64, u64), #[cfg(not(unix))] PathBuf);
 
 fn file_id(path: &Path) -> Option<FileId> {
     #[cfg(unix)]
@@ -136,7 +136,8 @@ impl OutputSet {
 
     /// Adds an output, `what` naming it in messages (e.g. "--csv").
     pub fn add(&mut self, what: &str, path: &Path, bytes: Vec<u8>) {
-        self.outputs.push((what.to_string(), path.to_path_buf(), bytes));
+        self.outputs
+            .push((what.to_string(), path.to_path_buf(), bytes));
     }
 
     /// Where a path really lands: through a symlink, at its target.
@@ -162,9 +163,9 @@ impl OutputSet {
         let mut targets: Vec<(PathBuf, Option<FileId>)> = Vec::new();
         for (what, path, _) in &self.outputs {
             let target = Self::target(path)?;
-            let name = target.file_name().ok_or_else(|| {
-                write_err(path, format!("{what}: not a file path"))
-            })?;
+            let name = target
+                .file_name()
+                .ok_or_else(|| write_err(path, format!("{what}: not a file path")))?;
             if name.is_empty() {
                 return Err(write_err(path, format!("{what}: not a file path")));
             }
@@ -178,7 +179,7 @@ impl OutputSet {
                     return Err(write_err(
                         path,
                         format!("{what}: directory {} does not exist", dir.display()),
-                    ))
+                    ));
                 }
             }
             if let Ok(meta) = std::fs::metadata(&target) {
@@ -211,7 +212,7 @@ impl OutputSet {
             {
                 return Err(write_err(
                     path,
-                    format!("{what}: is also the output of {}", other.0 .0),
+                    format!("{what}: is also the output of {}", other.0.0),
                 ));
             }
             targets.push((key, id));
@@ -275,8 +276,15 @@ impl TempOutput {
     /// Opens the temporary file for `path` (through a symlink, at its target).
     pub fn beside(path: &Path) -> Result<Self, IoError> {
         let target = OutputSet::target(path)?;
-        let dir = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        let name = target.file_name().unwrap_or_default().to_string_lossy().to_string();
+        let dir = target
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let name = target
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .to_string();
         let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
         let f = std::fs::File::create(&tmp).map_err(|e| write_err(path, e.to_string()))?;
         Ok(TempOutput {

@@ -16,8 +16,7 @@ use std::fmt::Write as _;
 /// The JSON Schema of task files (what `posture-opt schema` prints and `docs/task.schema.json`
 /// holds).
 pub fn task_schema() -> serde_json::Value {
-    serde_json::to_value(schema_for!(crate::plan::task::TaskFile))
-        .expect("a schema is plain JSON")
+    serde_json::to_value(schema_for!(crate::plan::task::TaskFile)).expect("a schema is plain JSON")
 }
 
 /// The task file reference as Markdown, rendered from [`task_schema`] (what
@@ -31,7 +30,10 @@ pub fn task_schema_markdown() -> String {
 /// required, unit, default, range or allowed values, and meaning.
 pub fn schema_markdown(schema: &Value) -> String {
     let empty = Map::new();
-    let defs = schema.get("$defs").and_then(Value::as_object).unwrap_or(&empty);
+    let defs = schema
+        .get("$defs")
+        .and_then(Value::as_object)
+        .unwrap_or(&empty);
     let r = Renderer { defs };
     let mut o = String::new();
     o.push_str(INTRO);
@@ -131,7 +133,10 @@ impl<'a> Renderer<'a> {
         // `anyOf: [X, null]` is an optional X
         let mut v = prop;
         if let Some(any) = prop.get("anyOf").and_then(Value::as_array) {
-            let non_null: Vec<&Value> = any.iter().filter(|a| a.get("type") != Some(&Value::from("null"))).collect();
+            let non_null: Vec<&Value> = any
+                .iter()
+                .filter(|a| a.get("type") != Some(&Value::from("null")))
+                .collect();
             nullable = non_null.len() < any.len();
             if non_null.len() == 1 {
                 v = non_null[0];
@@ -144,7 +149,14 @@ impl<'a> Renderer<'a> {
         nullable |= types.contains(&"null");
         let allowed = target.get("enum").and_then(Value::as_array).map(|e| {
             e.iter()
-                .map(|x| format!("`{}`", x.as_str().map(str::to_string).unwrap_or_else(|| x.to_string())))
+                .map(|x| {
+                    format!(
+                        "`{}`",
+                        x.as_str()
+                            .map(str::to_string)
+                            .unwrap_or_else(|| x.to_string())
+                    )
+                })
                 .collect::<Vec<_>>()
                 .join(", ")
         });
@@ -157,7 +169,10 @@ impl<'a> Renderer<'a> {
             format!("object ([`{name}`](#{}))", ANCHOR_PLACEHOLDER)
         } else if types.contains(&"array") {
             let items = target.get("items").map(|it| self.resolve(it));
-            let n = match (target.get("minItems").and_then(Value::as_u64), target.get("maxItems").and_then(Value::as_u64)) {
+            let n = match (
+                target.get("minItems").and_then(Value::as_u64),
+                target.get("maxItems").and_then(Value::as_u64),
+            ) {
                 (Some(a), Some(b)) if a == b => Some(a),
                 _ => None,
             };
@@ -203,7 +218,11 @@ impl<'a> Renderer<'a> {
     }
 
     fn section(&self, o: &mut String, path: &str, obj: &'a Value) -> Vec<(String, &'a Value)> {
-        let title = if path.is_empty() { "Top level".to_string() } else { format!("`{path}`") };
+        let title = if path.is_empty() {
+            "Top level".to_string()
+        } else {
+            format!("`{path}`")
+        };
         let _ = writeln!(o, "<a id=\"{}\"></a>\n\n## {title}\n", anchor(path));
         if let Some(d) = description(obj) {
             let _ = writeln!(o, "{}\n", d);
@@ -216,7 +235,11 @@ impl<'a> Renderer<'a> {
             .unwrap_or_default();
         if let Some(props) = obj.get("properties").and_then(Value::as_object) {
             for (k, v) in props {
-                let need = if required.contains(&k.as_str()) { "required" } else { "optional" };
+                let need = if required.contains(&k.as_str()) {
+                    "required"
+                } else {
+                    "optional"
+                };
                 rows.push((k.clone(), v, need.to_string()));
             }
         }
@@ -250,24 +273,41 @@ impl<'a> Renderer<'a> {
                     .collect()
             })
             .unwrap_or_default();
-        o.push_str("| field | type | required | unit | default | range / allowed values | meaning |\n");
+        o.push_str(
+            "| field | type | required | unit | default | range / allowed values | meaning |\n",
+        );
         o.push_str("|---|---|---|---|---|---|---|\n");
         let mut children = Vec::new();
         for (k, v, need) in &rows {
             let ft = self.field_type(k, v);
             let child_path = ft.child.as_ref().map(|(suffix, _)| {
-                if path.is_empty() { suffix.clone() } else { format!("{path}.{suffix}") }
+                if path.is_empty() {
+                    suffix.clone()
+                } else {
+                    format!("{path}.{suffix}")
+                }
             });
             let mut ty = ft.text.clone();
             if let Some(cp) = &child_path {
-                ty = ty.replace(&format!("[`{}`]", ft.child.as_ref().map(|c| c.0.as_str()).unwrap_or("")), &format!("[`{cp}`]"));
+                ty = ty.replace(
+                    &format!(
+                        "[`{}`]",
+                        ft.child.as_ref().map(|c| c.0.as_str()).unwrap_or("")
+                    ),
+                    &format!("[`{cp}`]"),
+                );
                 ty = ty.replace(ANCHOR_PLACEHOLDER, &anchor(cp));
             }
             if ft.nullable {
                 ty.push_str(" or null");
             }
             let desc = description(v)
-                .or_else(|| variant_desc.iter().find(|(n, _)| n == k).map(|(_, d)| d.clone()))
+                .or_else(|| {
+                    variant_desc
+                        .iter()
+                        .find(|(n, _)| n == k)
+                        .map(|(_, d)| d.clone())
+                })
                 .or_else(|| ft.type_description.clone());
             let text = desc.clone().unwrap_or_default();
             let unit = unit_of(&text, k).unwrap_or_else(|| "—".into());
@@ -287,8 +327,16 @@ impl<'a> Renderer<'a> {
                     }
                 }
             }
-            let range = if range.is_empty() { "—".to_string() } else { range.join("; ") };
-            let meaning = if text.is_empty() { "—".to_string() } else { text.clone() };
+            let range = if range.is_empty() {
+                "—".to_string()
+            } else {
+                range.join("; ")
+            };
+            let meaning = if text.is_empty() {
+                "—".to_string()
+            } else {
+                text.clone()
+            };
             let _ = writeln!(
                 o,
                 "| `{k}` | {} | {need} | {} | {} | {} | {} |",
@@ -353,8 +401,12 @@ fn scalar_name(v: &Value) -> &'static str {
 /// Bounds the schema itself writes (`minimum`, `maximum`, exclusive ones).
 fn number_bounds(v: &Value) -> Option<String> {
     let num = |k: &str| v.get(k).and_then(Value::as_f64).map(fmt_num);
-    let lo = num("minimum").map(|x| format!("≥ {x}")).or_else(|| num("exclusiveMinimum").map(|x| format!("> {x}")));
-    let hi = num("maximum").map(|x| format!("≤ {x}")).or_else(|| num("exclusiveMaximum").map(|x| format!("< {x}")));
+    let lo = num("minimum")
+        .map(|x| format!("≥ {x}"))
+        .or_else(|| num("exclusiveMinimum").map(|x| format!("> {x}")));
+    let hi = num("maximum")
+        .map(|x| format!("≤ {x}"))
+        .or_else(|| num("exclusiveMaximum").map(|x| format!("< {x}")));
     match (lo, hi) {
         (Some(a), Some(b)) => Some(format!("{a}, {b}")),
         (a, b) => a.or(b),
@@ -386,9 +438,18 @@ fn format_default(d: &Value) -> String {
         Value::Array(a) if a.is_empty() => "none (empty list)".into(),
         Value::Array(a) => format!(
             "`[{}]`",
-            a.iter().map(|x| x.as_f64().map(fmt_num).unwrap_or_else(|| x.to_string())).collect::<Vec<_>>().join(", ")
+            a.iter()
+                .map(|x| x.as_f64().map(fmt_num).unwrap_or_else(|| x.to_string()))
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
-        Value::Object(m) if m.values().all(|x| x.is_null() || x.as_object().is_some_and(|o| o.is_empty()) || x.as_array().is_some_and(|a| a.is_empty())) => {
+        Value::Object(m)
+            if m.values().all(|x| {
+                x.is_null()
+                    || x.as_object().is_some_and(|o| o.is_empty())
+                    || x.as_array().is_some_and(|a| a.is_empty())
+            }) =>
+        {
             "none".into()
         }
         Value::Object(_) => "each field's default".into(),
@@ -417,7 +478,10 @@ fn unit_of(text: &str, name: &str) -> Option<String> {
         ("_s", "s"),
         ("_m", "m"),
     ];
-    by_name.iter().find(|(suffix, _)| name.ends_with(suffix)).map(|(_, u)| u.to_string())
+    by_name
+        .iter()
+        .find(|(suffix, _)| name.ends_with(suffix))
+        .map(|(_, u)| u.to_string())
 }
 
 /// "default X" / "X by default" in a description.
@@ -483,7 +547,9 @@ fn range_in_text(text: &str) -> Option<String> {
             .last()
             .map(|(i, _)| i)?;
         let n = head[start..].trim_end_matches('.');
-        n.chars().any(|c| c.is_ascii_digit()).then(|| (start, n.to_string()))
+        n.chars()
+            .any(|c| c.is_ascii_digit())
+            .then(|| (start, n.to_string()))
     };
     let number_after = |start: usize| -> Option<String> {
         let tail = &text[start..];
@@ -528,7 +594,13 @@ fn range_in_text(text: &str) -> Option<String> {
     }
     found.sort_by_key(|f| f.0);
     found.dedup_by(|a, b| a.1 == b.1);
-    (!found.is_empty()).then(|| found.into_iter().map(|f| f.1).collect::<Vec<_>>().join("; "))
+    (!found.is_empty()).then(|| {
+        found
+            .into_iter()
+            .map(|f| f.1)
+            .collect::<Vec<_>>()
+            .join("; ")
+    })
 }
 
 /// Escapes a table cell.
@@ -571,7 +643,10 @@ pub fn explain_parse_error(message: &str) -> String {
             continue;
         };
         // the expected names, backtick-quoted (serde) or bare (the YAML parser), up to the line end
-        let list = message[lp + list_marker.len()..].lines().next().unwrap_or("");
+        let list = message[lp + list_marker.len()..]
+            .lines()
+            .next()
+            .unwrap_or("");
         let names: Vec<&str> = list
             .split(',')
             .map(|n| n.trim().trim_matches('`'))
@@ -607,19 +682,53 @@ mod tests {
 
     #[test]
     fn reads_units_defaults_and_ranges_from_descriptions() {
-        assert_eq!(unit_of("Stature [m], 1.2..2.3.", "stature_m").as_deref(), Some("m"));
-        assert_eq!(unit_of("Weight of the term", "toe_out_deg").as_deref(), Some("deg"));
+        assert_eq!(
+            unit_of("Stature [m], 1.2..2.3.", "stature_m").as_deref(),
+            Some("m")
+        );
+        assert_eq!(
+            unit_of("Weight of the term", "toe_out_deg").as_deref(),
+            Some("deg")
+        );
         assert_eq!(unit_of("A title", "name"), None);
-        assert_eq!(range_in_text("Stature [m], 1.2..2.3.").as_deref(), Some("1.2 to 2.3"));
-        assert_eq!(range_in_text("Strength percentile (1–99) of the worker's sex").as_deref(), Some("1 to 99"));
-        assert_eq!(range_in_text("How long the posture is held [s], > 0.").as_deref(), Some("> 0"));
-        assert_eq!(range_in_text("How many times the cycle repeats (1 or more).").as_deref(), Some("≥ 1"));
+        assert_eq!(
+            range_in_text("Stature [m], 1.2..2.3.").as_deref(),
+            Some("1.2 to 2.3")
+        );
+        assert_eq!(
+            range_in_text("Strength percentile (1–99) of the worker's sex").as_deref(),
+            Some("1 to 99")
+        );
+        assert_eq!(
+            range_in_text("How long the posture is held [s], > 0.").as_deref(),
+            Some("> 0")
+        );
+        assert_eq!(
+            range_in_text("How many times the cycle repeats (1 or more).").as_deref(),
+            Some("≥ 1")
+        );
         assert_eq!(range_in_text("A short title for reports."), None);
-        assert_eq!(default_in_text("Share on the left hand, 0..1; default 0.5.").as_deref(), Some("0.5"));
-        assert_eq!(default_in_text("Gravity [m/s²]; default (0, 0, −9.81). Magnitude at most 3 g.").as_deref(), Some("(0, 0, −9.81)"));
-        assert_eq!(default_in_text("(default 0.01, 0..0.5)").as_deref(), Some("0.01"));
-        assert_eq!(default_in_text("Foot links; default `l_foot`, `r_foot`.").as_deref(), Some("`l_foot`, `r_foot`"));
-        assert_eq!(default_in_text("of the worker's sex; 50 by default.").as_deref(), Some("50"));
+        assert_eq!(
+            default_in_text("Share on the left hand, 0..1; default 0.5.").as_deref(),
+            Some("0.5")
+        );
+        assert_eq!(
+            default_in_text("Gravity [m/s²]; default (0, 0, −9.81). Magnitude at most 3 g.")
+                .as_deref(),
+            Some("(0, 0, −9.81)")
+        );
+        assert_eq!(
+            default_in_text("(default 0.01, 0..0.5)").as_deref(),
+            Some("0.01")
+        );
+        assert_eq!(
+            default_in_text("Foot links; default `l_foot`, `r_foot`.").as_deref(),
+            Some("`l_foot`, `r_foot`")
+        );
+        assert_eq!(
+            default_in_text("of the worker's sex; 50 by default.").as_deref(),
+            Some("50")
+        );
     }
 
     #[test]
@@ -642,7 +751,10 @@ mod tests {
         walk(&schema, &mut names);
         assert!(names.len() > 40);
         for n in names {
-            assert!(md.contains(&format!("| `{n}` |")), "{n} missing from the Markdown reference");
+            assert!(
+                md.contains(&format!("| `{n}` |")),
+                "{n} missing from the Markdown reference"
+            );
         }
         assert!(md.contains("yaml-language-server: $schema="));
         assert!(!md.contains(ANCHOR_PLACEHOLDER));

@@ -117,7 +117,10 @@ impl Obstacle {
         let mut plane = None;
         let shape: Box<dyn Shape> = match &spec.shape {
             ShapeSpec::Box { size_m } => {
-                if !size_m.iter().all(|s| s.is_finite() && *s > 0.0 && *s <= MAX_SIZE_M) {
+                if !size_m
+                    .iter()
+                    .all(|s| s.is_finite() && *s > 0.0 && *s <= MAX_SIZE_M)
+                {
                     return Err(bad(format!(
                         "box size_m must be within 0..{MAX_SIZE_M} m, got {size_m:?}"
                     )));
@@ -136,7 +139,9 @@ impl Obstacle {
                     && *height_m > 0.0
                     && *height_m <= MAX_SIZE_M)
                 {
-                    return Err(bad(format!("cylinder radius_m and height_m must be within 0..{MAX_SIZE_M} m, got {radius_m}, {height_m}")));
+                    return Err(bad(format!(
+                        "cylinder radius_m and height_m must be within 0..{MAX_SIZE_M} m, got {radius_m}, {height_m}"
+                    )));
                 }
                 // parry's cylinder runs along its y axis; ours along z: turn +90° about x.
                 rot *= parry3d_f64::glamx::DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
@@ -197,7 +202,11 @@ impl Obstacle {
         .ok()
         .flatten()?;
         if c.dist <= 1e-9 {
-            if let ShapeSpec::Cylinder { radius_m: rc, height_m } = self.spec.shape {
+            if let ShapeSpec::Cylinder {
+                radius_m: rc,
+                height_m,
+            } = self.spec.shape
+            {
                 // parry reports a capsule whose axis lies inside a cylinder as touching (depth 0):
                 // the depth is the deepest axis point's distance to the cylinder's surface (a
                 // concave function along the segment: ternary search), plus the radius.
@@ -228,12 +237,18 @@ impl Obstacle {
         // depth of a world point inside the cylinder (negative outside) and the outward normal
         // of the nearest face
         let depth = |p: &Vector3<f64>| -> (f64, Vector3<f64>) {
-            let l = world_from_cyl.inverse_transform_point(&nalgebra::Point3::from(*p)).coords;
+            let l = world_from_cyl
+                .inverse_transform_point(&nalgebra::Point3::from(*p))
+                .coords;
             let r = (l.x * l.x + l.y * l.y).sqrt();
             let side = rc - r;
             let cap = 0.5 * h - l.z.abs();
             let local_n = if side < cap {
-                if r > 1e-12 { Vector3::new(l.x / r, l.y / r, 0.0) } else { Vector3::x() }
+                if r > 1e-12 {
+                    Vector3::new(l.x / r, l.y / r, 0.0)
+                } else {
+                    Vector3::x()
+                }
             } else {
                 Vector3::new(0.0, 0.0, l.z.signum())
             };

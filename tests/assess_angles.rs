@@ -19,8 +19,7 @@ use posture_opt::body::{BodyModel, StaticsData};
 const TOL_DEG: f64 = 1e-6;
 
 fn worker() -> BodyModel {
-    BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
-        .unwrap()
+    BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf")).unwrap()
 }
 
 /// The angles of the worker with the named joints set (degrees; prismatic joints in metres),
@@ -28,7 +27,9 @@ fn worker() -> BodyModel {
 fn angles_with(m: &BodyModel, set: &[(&str, f64)], share: Option<f64>) -> BodyAngles {
     let mut q = vec![0.0; m.nq()];
     for (name, v) in set {
-        let i = m.q_index(name).unwrap_or_else(|_| panic!("no joint {name}"));
+        let i = m
+            .q_index(name)
+            .unwrap_or_else(|_| panic!("no joint {name}"));
         q[i] = if name.starts_with("pelvis_t") && !name.ends_with("tilt") {
             *v
         } else {
@@ -84,7 +85,11 @@ fn pure_lumbar_flexion_is_trunk_flexion() {
     close(a.trunk_twist_deg, 0.0, "twist");
     // The neck and arms are measured against the trunk: still 0.
     close(a.neck_flexion_deg, 0.0, "neck");
-    close(a.right.upper_arm_flexion_deg, 0.0, "upper arm against the trunk");
+    close(
+        a.right.upper_arm_flexion_deg,
+        0.0,
+        "upper arm against the trunk",
+    );
 }
 
 /// Lumbar extension −15°: trunk leaning back 15° (negative flexion).
@@ -104,7 +109,11 @@ fn pelvis_tilt_and_lumbar_flexion_add() {
     close(a.trunk_twist_deg, 0.0, "twist");
     // Pelvis tilt alone: the trunk inclines with the pelvis.
     let a = angles(&[("pelvis_tilt", 25.0)]);
-    close(a.trunk_flexion_deg, 25.0, "trunk flexion from the pelvis alone");
+    close(
+        a.trunk_flexion_deg,
+        25.0,
+        "trunk flexion from the pelvis alone",
+    );
 }
 
 /// Pure lumbar axial rotation of 30° to the left: the shoulder line turns 30° against the
@@ -125,7 +134,11 @@ fn pure_twist_is_twist() {
 fn turning_the_whole_body_is_not_a_twist() {
     let a = angles(&[("pelvis_rotation", 40.0), ("lumbar_flexion", 30.0)]);
     close(a.trunk_twist_deg, 0.0, "twist");
-    close(a.trunk_flexion_deg, 30.0, "flexion in the body's own sagittal plane");
+    close(
+        a.trunk_flexion_deg,
+        30.0,
+        "flexion in the body's own sagittal plane",
+    );
     close(a.trunk_side_bend_deg, 0.0, "side bend");
 }
 
@@ -163,7 +176,11 @@ fn deep_stoop_with_small_side_bend_is_not_a_large_side_bend() {
 #[test]
 fn twist_in_a_stoop_is_the_axial_rotation() {
     let a = angles(&[("lumbar_flexion", 60.0), ("lumbar_axial_rotation", 20.0)]);
-    assert!((a.trunk_twist_deg - 20.0).abs() < 0.5, "{}", a.trunk_twist_deg);
+    assert!(
+        (a.trunk_twist_deg - 20.0).abs() < 0.5,
+        "{}",
+        a.trunk_twist_deg
+    );
 }
 
 /// The trunk flexion itself is unchanged by a twist that follows it in the chain: R_y(60°)
@@ -207,7 +224,11 @@ fn upper_arm_flexion_from_shoulder_flexion() {
         close(a.left.upper_arm_abduction_deg, 0.0, "left abduction");
     }
     let a = angles(&[("r_shoulder_flexion", 50.0), ("lumbar_flexion", 40.0)]);
-    close(a.right.upper_arm_flexion_deg, 50.0, "flexion against the trunk");
+    close(
+        a.right.upper_arm_flexion_deg,
+        50.0,
+        "flexion against the trunk",
+    );
 }
 
 /// Shoulder extension (flexion −30°): the arm points back, (−sin 30°, 0, −cos 30°): −30°.
@@ -222,7 +243,10 @@ fn upper_arm_extension_is_negative() {
 /// elevation from hanging is φ (the module's "flexion" is the elevation, module documentation).
 #[test]
 fn upper_arm_abduction_from_shoulder_abduction() {
-    let a = angles(&[("r_shoulder_abduction", 45.0), ("l_shoulder_abduction", 30.0)]);
+    let a = angles(&[
+        ("r_shoulder_abduction", 45.0),
+        ("l_shoulder_abduction", 30.0),
+    ]);
     close(a.right.upper_arm_abduction_deg, 45.0, "right abduction");
     close(a.left.upper_arm_abduction_deg, 30.0, "left abduction");
     close(a.right.upper_arm_flexion_deg, 45.0, "right elevation");
@@ -253,7 +277,11 @@ fn elbow_included_angle() {
         ("r_shoulder_rotation", -30.0),
         ("r_elbow_flexion", 100.0),
     ]);
-    close(a.right.elbow_flexion_deg, 100.0, "elbow with the shoulder moved");
+    close(
+        a.right.elbow_flexion_deg,
+        100.0,
+        "elbow with the shoulder moved",
+    );
 }
 
 /// Wrist flexion and deviation are the wrist joints; the forearm twist is the pronation as a
@@ -289,7 +317,11 @@ fn wrist_and_forearm() {
 #[test]
 fn knees_and_feet() {
     let m = worker();
-    let a = angles_with(&m, &[("r_knee_flexion", 40.0), ("l_knee_flexion", 70.0)], None);
+    let a = angles_with(
+        &m,
+        &[("r_knee_flexion", 40.0), ("l_knee_flexion", 70.0)],
+        None,
+    );
     close(a.right_knee_flexion_deg, 40.0, "right knee");
     close(a.left_knee_flexion_deg, 70.0, "left knee");
     // No stance (no feet) counts as both feet.

@@ -17,8 +17,8 @@
 
 use nalgebra::{Matrix3xX, Vector3};
 use posture_opt::body::{
-    apply_loads, forward_kinematics, holding_torque_derivative, holding_torques, mass_moments,
-    BodyModel, PointLoad, StaticsData, GRAVITY_M_S2,
+    BodyModel, GRAVITY_M_S2, PointLoad, StaticsData, apply_loads, forward_kinematics,
+    holding_torque_derivative, holding_torques, mass_moments,
 };
 use serde_json::Value;
 
@@ -128,7 +128,12 @@ fn check_robot(name: &str) {
             .fold(1.0, f64::max);
         for n in &names {
             let k = model.q_index(n).unwrap();
-            close(d.tau_nm[k], f(&c["tau_nm"][n]), 1e-9 * scale, &format!("{cname}: τ {n}"));
+            close(
+                d.tau_nm[k],
+                f(&c["tau_nm"][n]),
+                1e-9 * scale,
+                &format!("{cname}: τ {n}"),
+            );
             close(
                 d.tau_gravity_nm[k],
                 f(&c["tau_gravity_nm"][n]),
@@ -147,11 +152,21 @@ fn check_robot(name: &str) {
         for (link, p) in c["links"].as_object().unwrap() {
             let l = model.frame_link(link).unwrap();
             let (rot, pos) = d.link_pose(&model, l);
-            close3(&pos, &v3(&p["position_m"]), 1e-12, &format!("{cname}: {link} position"));
+            close3(
+                &pos,
+                &v3(&p["position_m"]),
+                1e-12,
+                &format!("{cname}: {link} position"),
+            );
             let r = p["rotation"].as_array().unwrap();
             for i in 0..3 {
                 for j in 0..3 {
-                    close(rot[(i, j)], f(&r[i][j]), 1e-12, &format!("{cname}: {link} R[{i}][{j}]"));
+                    close(
+                        rot[(i, j)],
+                        f(&r[i][j]),
+                        1e-12,
+                        &format!("{cname}: {link} R[{i}][{j}]"),
+                    );
                 }
             }
         }
@@ -161,8 +176,18 @@ fn check_robot(name: &str) {
         let mut jw = Matrix3xX::zeros(model.nq());
         for (e, l) in c["loads"].as_array().unwrap().iter().enumerate() {
             let p = d.link_point(&model, loads[e].link, &loads[e].point_in_link_m);
-            close3(&p, &v3(&l["point_world_m"]), 1e-12, &format!("{cname}: load {e} point"));
-            close3(&d.load_point_w[e], &p, 1e-15, &format!("{cname}: load {e} cached point"));
+            close3(
+                &p,
+                &v3(&l["point_world_m"]),
+                1e-12,
+                &format!("{cname}: load {e} point"),
+            );
+            close3(
+                &d.load_point_w[e],
+                &p,
+                1e-15,
+                &format!("{cname}: load {e} cached point"),
+            );
             d.point_jacobian(&model, loads[e].link, &p, &mut jp);
             d.angular_jacobian(&model, loads[e].link, &mut jw);
             for n in &names {
@@ -197,7 +222,10 @@ fn check_robot(name: &str) {
         // the one-call form gives the same torques
         let mut d2 = StaticsData::new(&model, loads.len());
         holding_torques(&model, &mut d2, &q, &loads, &g);
-        assert_eq!(d2.tau_nm, d.tau_nm, "{cname}: holding_torques = fk + moments + loads");
+        assert_eq!(
+            d2.tau_nm, d.tau_nm,
+            "{cname}: holding_torques = fk + moments + loads"
+        );
 
         // gravity alone: the torques and their derivative
         let mut d0 = StaticsData::new(&model, 0);

@@ -24,15 +24,14 @@
 
 use nalgebra::{Matrix2xX, Matrix3xX, Point3, Vector2, Vector3};
 use posture_opt::body::stance::{
-    cop_jacobian, foot_loads, ground_reaction, settle_internal_force, Foot, GroundReaction, Stance,
+    Foot, GroundReaction, Stance, cop_jacobian, foot_loads, ground_reaction, settle_internal_force,
 };
 use posture_opt::body::worker::{
-    worker_geometry, Worker, LEFT_FOOT_LINK, LEFT_HAND_FRAME, PELVIS_JOINTS, RIGHT_FOOT_LINK,
-    RIGHT_HAND_FRAME,
+    LEFT_FOOT_LINK, LEFT_HAND_FRAME, PELVIS_JOINTS, RIGHT_FOOT_LINK, RIGHT_HAND_FRAME, Worker,
+    worker_geometry,
 };
 use posture_opt::body::{
-    apply_loads, forward_kinematics, mass_moments, BodyModel, PointLoad, StaticsData,
-    GRAVITY_M_S2,
+    BodyModel, GRAVITY_M_S2, PointLoad, StaticsData, apply_loads, forward_kinematics, mass_moments,
 };
 use proptest::prelude::*;
 
@@ -165,7 +164,11 @@ fn hand_loads(s: &Setup, r: &[f64]) -> Vec<PointLoad> {
             link: s.hands[h],
             point_in_link_m: 0.02 * Vector3::new(r[9 * h], r[9 * h + 1], r[9 * h + 2]),
             // mostly downward: a carried load, pushed and pulled
-            force_n: Vector3::new(60.0 * r[9 * h + 3], 60.0 * r[9 * h + 4], -100.0 - 100.0 * r[9 * h + 5]),
+            force_n: Vector3::new(
+                60.0 * r[9 * h + 3],
+                60.0 * r[9 * h + 4],
+                -100.0 - 100.0 * r[9 * h + 5],
+            ),
             moment_nm: 5.0 * Vector3::new(r[9 * h + 6], r[9 * h + 7], r[9 * h + 8]),
         })
         .collect()
@@ -193,21 +196,34 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     // the unactuated pelvis joints hold nothing
     for k in 0..m.nq() {
         if !s.actuated[k] {
-            prop_assert!(d.tau_nm[k].abs() < 1e-8 * weight,
-                "{}: τ = {} after the statics", m.q_joint(k).name, d.tau_nm[k]);
+            prop_assert!(
+                d.tau_nm[k].abs() < 1e-8 * weight,
+                "{}: τ = {} after the statics",
+                m.q_joint(k).name,
+                d.tau_nm[k]
+            );
         }
     }
     // settling updated the torques as a fresh apply_loads with the settled forces does
     let fresh = torques_with(s, q, hands, r);
     for k in 0..m.nq() {
-        prop_assert!((fresh[k] - d.tau_nm[k]).abs() < 1e-9 * weight,
-            "{}: settled τ {} vs recomputed {}", m.q_joint(k).name, d.tau_nm[k], fresh[k]);
+        prop_assert!(
+            (fresh[k] - d.tau_nm[k]).abs() < 1e-9 * weight,
+            "{}: settled τ {} vs recomputed {}",
+            m.q_joint(k).name,
+            d.tau_nm[k],
+            fresh[k]
+        );
     }
 
     // the centre of pressure: the moment ratio of the reaction (−external)
     let (fg, mg) = (-f_ext, -m_ext);
     let p = Vector2::new(-mg.y / fg.z, mg.x / fg.z);
-    prop_assert!((r.cop_total_m - p).norm() < 1e-12, "CoP {} vs {p}", r.cop_total_m);
+    prop_assert!(
+        (r.cop_total_m - p).norm() < 1e-12,
+        "CoP {} vs {p}",
+        r.cop_total_m
+    );
     // the free moment: what the vertical-axis moment leaves after p × F
     let t_z = mg.z - (p.x * fg.y - p.y * fg.x);
     prop_assert!((r.free_moment_nm[0] + r.free_moment_nm[1] - t_z).abs() < 1e-9 * weight);
@@ -217,22 +233,33 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     let cr = sole_centre(m, d, s.stance.feet[1].link);
     let (cl2, cr2) = (cl.xy(), cr.xy());
     let share = ((p - cr2).dot(&(cl2 - cr2)) / (cl2 - cr2).norm_squared()).clamp(0.0, 1.0);
-    prop_assert!((r.left_share - share).abs() < 1e-12, "share {} vs {share}", r.left_share);
+    prop_assert!(
+        (r.left_share - share).abs() < 1e-12,
+        "share {} vs {share}",
+        r.left_share
+    );
     prop_assert!((r.force_n[0].z - share * fg.z).abs() < 1e-9 * weight);
     prop_assert!((r.force_n[1].z - (1.0 - share) * fg.z).abs() < 1e-9 * weight);
     prop_assert!((r.free_moment_nm[0] - share * t_z).abs() < 1e-9 * weight);
     let delta = p - (share * cl2 + (1.0 - share) * cr2);
     for (i, c) in [cl2, cr2].iter().enumerate() {
         let pi = Vector3::new(c.x + delta.x, c.y + delta.y, 0.0);
-        prop_assert!((r.cop_m[i] - pi).norm() < 1e-12, "foot {i} CoP {} vs {pi}", r.cop_m[i]);
+        prop_assert!(
+            (r.cop_m[i] - pi).norm() < 1e-12,
+            "foot {i} CoP {} vs {pi}",
+            r.cop_m[i]
+        );
     }
     // before settling each force points at A = p + F h/F_z, h the CoM height
     let h = d.com_m.z.max(0.05);
     let apex = Vector3::new(p.x, p.y, 0.0) + fg * (h / fg.z);
     for i in 0..2 {
         let expect = [share, 1.0 - share][i] * fg.z * (apex - r0.cop_m[i]) / h;
-        prop_assert!((r0.force_n[i] - expect).norm() < 1e-9 * weight,
-            "foot {i}: {} vs {expect}", r0.force_n[i]);
+        prop_assert!(
+            (r0.force_n[i] - expect).norm() < 1e-9 * weight,
+            "foot {i}: {} vs {expect}",
+            r0.force_n[i]
+        );
     }
     // settling adds ±λe, e horizontal from the right sole to the left one
     let e = Vector3::new(cl.x - cr.x, cl.y - cr.y, 0.0).normalize();
@@ -257,7 +284,11 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     // settling: stationary sum of squared actuated torques along λ, a minimum; joints that
     // carry no foot keep their torques
     let cost = |tau: &[f64]| -> f64 {
-        tau.iter().zip(&s.actuated).filter(|(_, a)| **a).map(|(t, _)| t * t).sum()
+        tau.iter()
+            .zip(&s.actuated)
+            .filter(|(_, a)| **a)
+            .map(|(t, _)| t * t)
+            .sum()
     };
     let settled: Vec<f64> = d.tau_nm.iter().copied().collect();
     let c0 = cost(&settled);
@@ -266,14 +297,21 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
         rr.force_n[0] += dl * e;
         rr.force_n[1] -= dl * e;
         let c = cost(&torques_with(s, q, hands, &rr));
-        prop_assert!(c >= c0 - 1e-9 * c0.max(1.0), "λ{dl:+}: cost {c} < settled {c0}");
+        prop_assert!(
+            c >= c0 - 1e-9 * c0.max(1.0),
+            "λ{dl:+}: cost {c} < settled {c0}"
+        );
     }
     let legs = ["hip", "knee", "ankle"];
     for k in 0..m.nq() {
         let name = &m.q_joint(k).name;
         if s.actuated[k] && !legs.iter().any(|l| name.contains(l)) {
-            prop_assert!((settled[k] - sv.tau_before_settle[k]).abs() < 1e-9 * weight,
-                "{name} changed by settling: {} → {}", sv.tau_before_settle[k], settled[k]);
+            prop_assert!(
+                (settled[k] - sv.tau_before_settle[k]).abs() < 1e-9 * weight,
+                "{name} changed by settling: {} → {}",
+                sv.tau_before_settle[k],
+                settled[k]
+            );
         }
     }
     Ok(())
@@ -346,7 +384,11 @@ fn standing_upright_splits_the_weight_in_half() {
     let y_edge = geo.hip_half_width_m + foot.half_width_m;
     let p = r.cop_total_m;
     let by_hand = (foot.half_length_m - (p.x - x0).abs()).min(y_edge - p.y.abs());
-    assert!((r.margin_m - by_hand).abs() < 1e-12, "{} vs {by_hand}", r.margin_m);
+    assert!(
+        (r.margin_m - by_hand).abs() < 1e-12,
+        "{} vs {by_hand}",
+        r.margin_m
+    );
     assert!(r.margin_m > 0.0);
     // left and right forces mirror each other
     let f = r.force_n;
@@ -374,9 +416,8 @@ fn the_split_follows_the_centre_of_pressure() {
     let cr = sole_centre(m, &d, s.stance.feet[1].link).xy();
     // the hand moment that moves the centre of pressure to `target`:
     // p = (−M_y/F_z, M_x/F_z) with M = −(m0 + M_h)
-    let moment_for = |target: Vector2<f64>| {
-        Vector3::new(-m0.x - target.y * fz, -m0.y + target.x * fz, 0.0)
-    };
+    let moment_for =
+        |target: Vector2<f64>| Vector3::new(-m0.x - target.y * fz, -m0.y + target.x * fz, 0.0);
     for (target, share) in [
         (cl, 1.0),
         (cr, 0.0),
@@ -393,8 +434,16 @@ fn the_split_follows_the_centre_of_pressure() {
         }];
         let sv = solve(&s, &q, &hand);
         let r = &sv.after;
-        assert!((r.cop_total_m - target).norm() < 1e-12, "{} vs {target}", r.cop_total_m);
-        assert!((r.left_share - share).abs() < 1e-12, "{target}: share {}", r.left_share);
+        assert!(
+            (r.cop_total_m - target).norm() < 1e-12,
+            "{} vs {target}",
+            r.cop_total_m
+        );
+        assert!(
+            (r.left_share - share).abs() < 1e-12,
+            "{target}: share {}",
+            r.left_share
+        );
         assert!((r.force_n[0].z - share * fz).abs() < 1e-9);
         assert!((r.force_n[1].z - (1.0 - share) * fz).abs() < 1e-9);
         if share == 1.0 {
@@ -414,8 +463,16 @@ fn a_lifting_load_is_not_supported() {
     let s = setup();
     let m = &s.m;
     let q = vec![0.0; m.nq()];
-    let lift = [PointLoad::force_at(s.hands[0], Vector3::new(0.0, 0.0, 2.0 * m.total_mass_kg() * 9.81))];
+    let lift = [PointLoad::force_at(
+        s.hands[0],
+        Vector3::new(0.0, 0.0, 2.0 * m.total_mass_kg() * 9.81),
+    )];
     let sv = solve(&s, &q, &lift);
     assert!(!sv.after.supported);
-    assert!(sv.after.force_n.iter().all(|f| f.iter().all(|x| x.is_finite())));
+    assert!(
+        sv.after
+            .force_n
+            .iter()
+            .all(|f| f.iter().all(|x| x.is_finite()))
+    );
 }

@@ -8,8 +8,8 @@
 
 use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
 use posture_opt::body::{
-    holding_torque_derivative, holding_torques, BodyError, BodyModel, JointKind, PointLoad,
-    StaticsData, GRAVITY_M_S2,
+    BodyError, BodyModel, GRAVITY_M_S2, JointKind, PointLoad, StaticsData,
+    holding_torque_derivative, holding_torques,
 };
 use proptest::prelude::*;
 
@@ -99,10 +99,24 @@ fn two_link_arm_by_hand_at_a_glance() {
     let tip = m.frame_link("tip").unwrap();
     let w = PointLoad::force_at(tip, Vector3::new(0.0, 0.0, -5.0 * G));
     holding_torques(&m, &mut d, &[0.0, 0.0], &[w], &GRAVITY_M_S2);
-    assert!((d.tau_nm[0] - 9.81 * (0.3 + 0.6 + 2.75)).abs() < 1e-12, "{}", d.tau_nm[0]);
-    assert!((d.tau_nm[1] - 9.81 * (0.15 + 1.25)).abs() < 1e-12, "{}", d.tau_nm[1]);
+    assert!(
+        (d.tau_nm[0] - 9.81 * (0.3 + 0.6 + 2.75)).abs() < 1e-12,
+        "{}",
+        d.tau_nm[0]
+    );
+    assert!(
+        (d.tau_nm[1] - 9.81 * (0.15 + 1.25)).abs() < 1e-12,
+        "{}",
+        d.tau_nm[1]
+    );
     // straight up: no lever, no torque
-    holding_torques(&m, &mut d, &[std::f64::consts::FRAC_PI_2, 0.0], &[w], &GRAVITY_M_S2);
+    holding_torques(
+        &m,
+        &mut d,
+        &[std::f64::consts::FRAC_PI_2, 0.0],
+        &[w],
+        &GRAVITY_M_S2,
+    );
     assert!(d.tau_nm.amax() < 1e-12);
 }
 
@@ -196,7 +210,11 @@ fn loads(m: &BodyModel, pick: &[usize], r: &[f64]) -> Vec<PointLoad> {
 /// (ω such that dR = [ω]× R) from R(q + h) and R(q − h): the axial part of (R₊ − R₋)/(2h) · Rᵀ.
 fn angular_fd(rp: &Matrix3<f64>, rm: &Matrix3<f64>, r: &Matrix3<f64>, h: f64) -> Vector3<f64> {
     let s = (rp - rm) / (2.0 * h) * r.transpose();
-    Vector3::new(s[(2, 1)] - s[(1, 2)], s[(0, 2)] - s[(2, 0)], s[(1, 0)] - s[(0, 1)]) / 2.0
+    Vector3::new(
+        s[(2, 1)] - s[(1, 2)],
+        s[(0, 2)] - s[(2, 0)],
+        s[(1, 0)] - s[(0, 1)],
+    ) / 2.0
 }
 
 /// Point, angular and CoM Jacobians and ∂τ/∂q against central differences at `q` under `ld` and
@@ -262,7 +280,12 @@ fn fd_check(m: &BodyModel, q: &[f64], ld: &[PointLoad], g: &Vector3<f64>) -> Res
                     jp[e].column(k)
                 ));
             }
-            let wfd = angular_fd(&dp.link_pose(m, l.link).0, &dm.link_pose(m, l.link).0, &rots[e], h);
+            let wfd = angular_fd(
+                &dp.link_pose(m, l.link).0,
+                &dm.link_pose(m, l.link).0,
+                &rots[e],
+                h,
+            );
             if (jw[e].column(k) - wfd).norm() > 1e-8 {
                 return Err(format!(
                     "angular Jacobian of link {} column {name}: {} vs finite differences {wfd}",
@@ -302,15 +325,27 @@ proptest! {
 fn finite_differences_at_fixed_postures() {
     for rel in ROBOTS {
         let m = load_model(rel);
-        for u in [vec![0.5], vec![0.2, 0.9, 0.35, 0.7, 0.05], vec![0.97, 0.03, 0.6]] {
+        for u in [
+            vec![0.5],
+            vec![0.2, 0.9, 0.35, 0.7, 0.05],
+            vec![0.97, 0.03, 0.6],
+        ] {
             let q = posture(&m, &u);
             let every_link: Vec<usize> = (0..m.links.len()).collect();
-            let ld = loads(&m, &every_link, &[0.3, -0.7, 0.5, 0.9, -0.2, 0.1, -0.6, 0.4, 0.8, -0.9]);
+            let ld = loads(
+                &m,
+                &every_link,
+                &[0.3, -0.7, 0.5, 0.9, -0.2, 0.1, -0.6, 0.4, 0.8, -0.9],
+            );
             fd_check(&m, &q, &ld, &GRAVITY_M_S2).unwrap_or_else(|e| panic!("{rel}: {e}"));
         }
         // and at q = 0 exactly (axes aligned, sines zero)
         let q = vec![0.0; m.nq()];
-        let ld = loads(&m, &[m.links.len() - 1, 1], &[0.1, 0.2, -0.3, 0.4, -0.5, 0.6, 0.7, -0.8, 0.9]);
+        let ld = loads(
+            &m,
+            &[m.links.len() - 1, 1],
+            &[0.1, 0.2, -0.3, 0.4, -0.5, 0.6, 0.7, -0.8, 0.9],
+        );
         fd_check(&m, &q, &ld, &GRAVITY_M_S2).unwrap_or_else(|e| panic!("{rel} at 0: {e}"));
     }
 }
@@ -357,9 +392,21 @@ fn joint_order_in_the_file_does_not_matter() {
     let reversed = format!("{rest}{}\n</robot>\n", joints.join("\n"));
     let a = BodyModel::from_urdf_str(&text, "a").unwrap();
     let b = BodyModel::from_urdf_str(&reversed, "b").unwrap();
-    let names = |m: &BodyModel| (0..m.nq()).map(|i| m.q_joint(i).name.clone()).collect::<Vec<_>>();
+    let names = |m: &BodyModel| {
+        (0..m.nq())
+            .map(|i| m.q_joint(i).name.clone())
+            .collect::<Vec<_>>()
+    };
     assert_ne!(names(&a), names(&b), "the test must reorder the joints");
-    let named = [("ja1", 0.4), ("ja2", -2.5), ("ja3", 0.12), ("ja4", 1.3), ("jb1", -0.1), ("jb2", 3.5), ("jc1", -0.8)];
+    let named = [
+        ("ja1", 0.4),
+        ("ja2", -2.5),
+        ("ja3", 0.12),
+        ("ja4", 1.3),
+        ("jb1", -0.1),
+        ("jb2", 3.5),
+        ("jc1", -0.8),
+    ];
     let torques = |m: &BodyModel| {
         let mut q = vec![0.0; m.nq()];
         for (n, v) in named {
@@ -367,8 +414,17 @@ fn joint_order_in_the_file_does_not_matter() {
         }
         let tool = m.frame_link("tool").unwrap();
         let mut d = StaticsData::new(m, 1);
-        holding_torques(m, &mut d, &q, &[PointLoad::force_at(tool, Vector3::new(1.0, 2.0, -30.0))], &GRAVITY_M_S2);
-        let t: Vec<f64> = named.iter().map(|(n, _)| d.tau_nm[m.q_index(n).unwrap()]).collect();
+        holding_torques(
+            m,
+            &mut d,
+            &q,
+            &[PointLoad::force_at(tool, Vector3::new(1.0, 2.0, -30.0))],
+            &GRAVITY_M_S2,
+        );
+        let t: Vec<f64> = named
+            .iter()
+            .map(|(n, _)| d.tau_nm[m.q_index(n).unwrap()])
+            .collect();
         (t, d.com_m)
     };
     let ((ta, ca), (tb, cb)) = (torques(&a), torques(&b));
@@ -387,35 +443,59 @@ fn malformed_urdfs_are_refused_by_element() {
     let good_joint = "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>";
     let cases: Vec<(String, &[&str])> = vec![
         (
-            two("<link name=\"arm\"><collision><geometry><cylinder radius=\"20\" length=\"1\"/></geometry></collision></link>", good_joint),
+            two(
+                "<link name=\"arm\"><collision><geometry><cylinder radius=\"20\" length=\"1\"/></geometry></collision></link>",
+                good_joint,
+            ),
             &["link 'arm'", "collision", "radius"],
         ),
         (
-            two("<link name=\"arm\"><collision><geometry><box size=\"0.1 1e9 0.1\"/></geometry></collision></link>", good_joint),
+            two(
+                "<link name=\"arm\"><collision><geometry><box size=\"0.1 1e9 0.1\"/></geometry></collision></link>",
+                good_joint,
+            ),
             &["link 'arm'", "box size"],
         ),
         (
-            two("<link name=\"arm\"><inertial><mass value=\"-2\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>", good_joint),
+            two(
+                "<link name=\"arm\"><inertial><mass value=\"-2\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>",
+                good_joint,
+            ),
             &["link 'arm'", "mass"],
         ),
         (
-            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><origin xyz=\"1e6 0 0\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            two(
+                "<link name=\"arm\"/>",
+                "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><origin xyz=\"1e6 0 0\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>",
+            ),
             &["joint 'j'", "origin"],
         ),
         (
-            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            two(
+                "<link name=\"arm\"/>",
+                "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 0 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>",
+            ),
             &["joint 'j'", "axis"],
         ),
         (
-            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"nowhere\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            two(
+                "<link name=\"arm\"/>",
+                "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"nowhere\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>",
+            ),
             &["joint 'j'", "nowhere"],
         ),
         (
-            two("<link name=\"arm\"/>", "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 1 0\"/><limit lower=\"1\" upper=\"-1\" effort=\"1\" velocity=\"1\"/></joint>"),
+            two(
+                "<link name=\"arm\"/>",
+                "<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"arm\"/><axis xyz=\"0 1 0\"/><limit lower=\"1\" upper=\"-1\" effort=\"1\" velocity=\"1\"/></joint>",
+            ),
             &["joint 'j'", "limit"],
         ),
         (
-            two("<link name=\"arm\"><collision><geometry><mesh filename=\"arm.stl\"/></geometry></collision></link>", good_joint),
+            two(
+                "<link name=\"arm\"><collision><geometry><mesh filename=\"arm.stl\"/></geometry></collision></link>",
+                good_joint,
+            ),
             &["link 'arm'", "mesh"],
         ),
     ];

@@ -17,7 +17,7 @@
 //! produce at that posture, and make every other group far stronger than needed.
 
 use posture_opt::assess::phase::assess_phases;
-use posture_opt::plan::{plan_task, Plan, Task};
+use posture_opt::plan::{Plan, Task, plan_task};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
@@ -86,7 +86,10 @@ fn task_with(set: impl Fn(f64, f64) -> ((f64, f64), (f64, f64))) -> (Task, f64, 
     let c = &a[0].capable[0];
     assert_eq!(c.half_joint, GROUP, "{:?}", a[0].capable);
     let required = c.required_nm;
-    assert!(required > 1.0, "the elbow flexors hold the load: {required} N·m");
+    assert!(
+        required > 1.0,
+        "the elbow flexors hold the load: {required} N·m"
+    );
     let factor = task.half_joints[h].posture_factor(&q);
     assert!(factor > 0.0);
     let ((mm, ms), (fm, fs)) = set(required, factor);
@@ -167,11 +170,7 @@ fn the_posture_factor_scales_the_strength() {
 fn no_spread_is_all_or_nothing() {
     let (task, _, _) = task_with(|req, f| ((1.01 * req / f, 0.0), (0.99 * req / f, 0.0)));
     let a = assess_phases(&task, &planned().plan);
-    let c = a[0]
-        .capable
-        .iter()
-        .find(|c| c.half_joint == GROUP)
-        .unwrap();
+    let c = a[0].capable.iter().find(|c| c.half_joint == GROUP).unwrap();
     assert_eq!(c.men, 1.0);
     assert_eq!(c.women, 0.0);
 }

@@ -313,7 +313,14 @@ fn plan_json_contract_and_csv() {
     // per-step results as columns of equal length, postures by index into `postures`
     let steps = &v["steps"];
     let n = steps["t_s"].as_array().unwrap().len();
-    for key in ["duration_s", "phase", "cycle", "posture", "capacity", "fatigue_u_min"] {
+    for key in [
+        "duration_s",
+        "phase",
+        "cycle",
+        "posture",
+        "capacity",
+        "fatigue_u_min",
+    ] {
         assert_eq!(steps[key].as_array().unwrap().len(), n, "steps.{key}");
     }
     assert_eq!(steps["t_s"][0], 0.0);
@@ -321,11 +328,22 @@ fn plan_json_contract_and_csv() {
     for p in steps["posture"].as_array().unwrap() {
         assert!((p.as_u64().unwrap() as usize) < postures.len());
     }
-    for key in ["q_rad", "torque_nm", "load", "hand_position_m", "hand_force_n"] {
+    for key in [
+        "q_rad",
+        "torque_nm",
+        "load",
+        "hand_position_m",
+        "hand_force_n",
+    ] {
         assert!(!postures[0][key].is_null(), "postures[0].{key}");
     }
     // the rest step holds no target
-    let rest = steps["phase"].as_array().unwrap().iter().position(|p| p == "rest").unwrap();
+    let rest = steps["phase"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|p| p == "rest")
+        .unwrap();
     let rest_posture = &postures[steps["posture"][rest].as_u64().unwrap() as usize];
     assert!(rest_posture["hand_position_m"][0].is_null() || rest_posture["phase"] == "rest");
     // the solver's own account of each phase

@@ -11,9 +11,9 @@
 
 mod common;
 
-use common::{bin, rel, tempdir, write, Run};
+use common::{Run, bin, rel, tempdir, write};
 use nalgebra::Vector3;
-use posture_opt::body::{forward_kinematics, holding_torques, PointLoad, StaticsData};
+use posture_opt::body::{PointLoad, StaticsData, forward_kinematics, holding_torques};
 use posture_opt::plan::Task;
 use posture_opt::record::{self, Input, Options};
 use std::f64::consts::FRAC_PI_2;
@@ -83,7 +83,11 @@ fn elbow_torque_by_levers(t: &Task, q: &[f64], load_kg: f64) -> f64 {
             tau -= a.dot(&(c - o).cross(&(link.mass_kg * g)));
         }
     }
-    let grip = m.links.iter().position(|l| l.name == "r_hand_grip").unwrap();
+    let grip = m
+        .links
+        .iter()
+        .position(|l| l.name == "r_hand_grip")
+        .unwrap();
     let p = d.link_point(m, grip, &Vector3::zeros());
     tau -= a.dot(&(p - o).cross(&(load_kg * g)));
     tau
@@ -131,7 +135,10 @@ fn the_load_is_the_elbow_torque_over_the_mvc_worked_out_by_hand() {
     let by_levers = elbow_torque_by_levers(&t, &q, load_kg);
     // de Leva: the URDF prints masses to 0.1 g and centres to 0.01 mm, so 1e-4 relative
     let by_table = elbow_torque_de_leva_at_90(load_kg);
-    assert!(rel_diff(by_levers, by_table) < 1e-4, "levers {by_levers} vs de Leva {by_table}");
+    assert!(
+        rel_diff(by_levers, by_table) < 1e-4,
+        "levers {by_levers} vs de Leva {by_table}"
+    );
     // the library's statics called directly agree with the lever sum to rounding
     let m = &t.model;
     let mut d = StaticsData::new(m, 1);
@@ -139,12 +146,20 @@ fn the_load_is_the_elbow_torque_over_the_mvc_worked_out_by_hand() {
     let f = PointLoad::force_at(grip, Vector3::new(0.0, 0.0, -G * load_kg));
     holding_torques(m, &mut d, &q, &[f], &Vector3::new(0.0, 0.0, -G));
     let e = m.q_index("r_elbow_flexion").unwrap();
-    assert!(rel_diff(d.tau_nm[e], by_levers) < 1e-12, "{} vs {by_levers}", d.tau_nm[e]);
+    assert!(
+        rel_diff(d.tau_nm[e], by_levers) < 1e-12,
+        "{} vs {by_levers}",
+        d.tau_nm[e]
+    );
     // holding a weight with the elbow bent loads the flexors (positive direction), and the
     // half-joint's MVC at this posture is the table's reference value
     assert!(by_levers > 0.0);
     let h = half_joint(&t, "r_elbow_flexion+");
-    assert!(t.half_joints[h].group.contains("elbow flexors"), "{}", t.half_joints[h].group);
+    assert!(
+        t.half_joints[h].group.contains("elbow flexors"),
+        "{}",
+        t.half_joints[h].group
+    );
     assert!(rel_diff(t.half_joints[h].mvc_at(&q), ELBOW_FLEXOR_MVC_NM) < 1e-12);
 }
 
@@ -165,28 +180,48 @@ fn a_held_posture_follows_the_closed_forms_without_recovery() {
         rec.push_str(&format!("{s},{},{load_kg}\n", FRAC_PI_2));
     }
     let ev = evaluate_text(&t, &rec, "held.csv");
-    let (flex, ext) = (half_joint(&t, "r_elbow_flexion+"), half_joint(&t, "r_elbow_flexion-"));
+    let (flex, ext) = (
+        half_joint(&t, "r_elbow_flexion+"),
+        half_joint(&t, "r_elbow_flexion-"),
+    );
     assert_eq!(ev.samples, times.len() as u64);
     assert_eq!(ev.timeline.stride, 1);
     assert_eq!(ev.timeline.t_s, times.to_vec());
     for (i, &s) in times.iter().enumerate() {
         let tl = &ev.timeline;
-        assert!(rel_diff(tl.load[i][flex], f) < 1e-12, "load {} vs {f}", tl.load[i][flex]);
+        assert!(
+            rel_diff(tl.load[i][flex], f) < 1e-12,
+            "load {} vs {f}",
+            tl.load[i][flex]
+        );
         assert_eq!(tl.load[i][ext], 0.0, "the extensors hold nothing");
         let t_min = s / 60.0;
         let c = (-k * f * t_min).exp();
         let u = ((2.0 * k * f * t_min).exp() - 1.0) / (2.0 * k);
         // the program composes per-interval exact updates; the closed form is one expression:
         // they differ by rounding only
-        assert!(rel_diff(tl.capacity[i][flex], c) < 1e-12, "t = {s}: c {} vs {c}", tl.capacity[i][flex]);
+        assert!(
+            rel_diff(tl.capacity[i][flex], c) < 1e-12,
+            "t = {s}: c {} vs {c}",
+            tl.capacity[i][flex]
+        );
         if s == 0.0 {
             assert_eq!(tl.fatigue_u_min[i][flex], 0.0);
         } else {
-            assert!(rel_diff(tl.fatigue_u_min[i][flex], u) < 1e-12, "t = {s}: U {} vs {u}", tl.fatigue_u_min[i][flex]);
+            assert!(
+                rel_diff(tl.fatigue_u_min[i][flex], u) < 1e-12,
+                "t = {s}: U {} vs {u}",
+                tl.fatigue_u_min[i][flex]
+            );
         }
     }
     assert!(rel_diff(ev.final_capacity[flex], (-k * f * 20.0).exp()) < 1e-12);
-    assert!(rel_diff(ev.final_fatigue_u_min[flex], ((2.0 * k * f * 20.0).exp() - 1.0) / (2.0 * k)) < 1e-12);
+    assert!(
+        rel_diff(
+            ev.final_fatigue_u_min[flex],
+            ((2.0 * k * f * 20.0).exp() - 1.0) / (2.0 * k)
+        ) < 1e-12
+    );
     // exhaustion when c = f: MET = −ln f / (k f) minutes (paper Eq. 8), inside an interval
     let met_s = -f.ln() / (k * f) * 60.0;
     assert!(met_s > 450.25 && met_s < 1200.0, "MET {met_s} s");
@@ -195,7 +230,11 @@ fn a_held_posture_follows_the_closed_forms_without_recovery() {
         .iter()
         .find(|e| e.half_joint == "r_elbow_flexion+")
         .expect("the elbow flexors exhaust");
-    assert!(rel_diff(e.t_s, met_s) < 1e-9, "exhausted at {} s, MET {met_s} s", e.t_s);
+    assert!(
+        rel_diff(e.t_s, met_s) < 1e-9,
+        "exhausted at {} s, MET {met_s} s",
+        e.t_s
+    );
     assert!(!e.exceeds_capacity_at_start);
     assert!(rel_diff(e.load, f) < 1e-12);
     // total U is the sum over groups
@@ -231,7 +270,11 @@ fn with_recovery_the_evaluation_matches_an_independent_integration() {
     );
     let recovery = |f: f64| {
         let x = 1.0 - f / f_lim;
-        if x > 0.0 { r_rest * x * x * (3.0 - 2.0 * x) } else { 0.0 }
+        if x > 0.0 {
+            r_rest * x * x * (3.0 - 2.0 * x)
+        } else {
+            0.0
+        }
     };
     // (time [s], elbow [deg], load [kg]): work, rest with the forearm held up, other angles
     let rows = [
@@ -258,21 +301,45 @@ fn with_recovery_the_evaluation_matches_an_independent_integration() {
         })
         .collect();
     // the recording spans loads with full, partial and no recovery
-    assert!(loads.iter().any(|&f| f > f_lim) && loads.iter().any(|&f| f < 0.5 * f_lim), "{loads:?}");
+    assert!(
+        loads.iter().any(|&f| f > f_lim) && loads.iter().any(|&f| f < 0.5 * f_lim),
+        "{loads:?}"
+    );
     let (mut c, mut u) = (1.0, 0.0);
     for i in 0..rows.len() {
         let tl = &ev.timeline;
         assert_eq!(tl.t_s[i], rows[i].0);
-        assert!(rel_diff(tl.load[i][h], loads[i]) < 1e-12, "sample {i}: load {} vs {}", tl.load[i][h], loads[i]);
+        assert!(
+            rel_diff(tl.load[i][h], loads[i]) < 1e-12,
+            "sample {i}: load {} vs {}",
+            tl.load[i][h],
+            loads[i]
+        );
         // RK4 with 0.01 s steps: error ~ (λh)⁴ per unit time, λ < 1.5/min, h < 2e-4 min
-        assert!(rel_diff(tl.capacity[i][h], c) < 1e-10, "sample {i}: c {} vs {c}", tl.capacity[i][h]);
+        assert!(
+            rel_diff(tl.capacity[i][h], c) < 1e-10,
+            "sample {i}: c {} vs {c}",
+            tl.capacity[i][h]
+        );
         if u > 0.0 {
-            assert!(rel_diff(tl.fatigue_u_min[i][h], u) < 1e-10, "sample {i}: U {} vs {u}", tl.fatigue_u_min[i][h]);
+            assert!(
+                rel_diff(tl.fatigue_u_min[i][h], u) < 1e-10,
+                "sample {i}: U {} vs {u}",
+                tl.fatigue_u_min[i][h]
+            );
         }
         if let Some(next) = rows.get(i + 1) {
             // zero-order hold: sample i's load acts until sample i + 1
             let dt = next.0 - rows[i].0;
-            (c, u) = rk4(k, recovery(loads[i]), loads[i], c, u, dt, (dt / 0.01).ceil() as usize);
+            (c, u) = rk4(
+                k,
+                recovery(loads[i]),
+                loads[i],
+                c,
+                u,
+                dt,
+                (dt / 0.01).ceil() as usize,
+            );
         }
     }
     assert!(rel_diff(ev.final_capacity[h], c) < 1e-10);
@@ -314,34 +381,79 @@ fn offline_and_streaming_agree_exactly_in_the_library() {
     assert_eq!(ev.timeline.stride, 1, "every sample is in the timeline");
     for n in [usize::MAX, 7] {
         let mut out = Vec::new();
-        let count = record::stream(&t, Trickle { data: text.as_bytes(), n }, "stdin", &Options::default(), &mut out).unwrap();
+        let count = record::stream(
+            &t,
+            Trickle {
+                data: text.as_bytes(),
+                n,
+            },
+            "stdin",
+            &Options::default(),
+            &mut out,
+        )
+        .unwrap();
         assert_eq!(count, ev.samples);
         let lines: Vec<serde_json::Value> = out
             .split(|b| *b == b'\n')
             .filter(|l| !l.is_empty())
             .map(|l| serde_json::from_slice(l).unwrap())
             .collect();
-        assert_eq!(lines.len() as u64, ev.samples + 1, "a first line naming the columns, then one per sample");
-        let ids: Vec<&str> = lines[0]["half_joint_ids"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
-        assert_eq!(ids, ev.half_joint_ids.iter().map(String::as_str).collect::<Vec<_>>());
+        assert_eq!(
+            lines.len() as u64,
+            ev.samples + 1,
+            "a first line naming the columns, then one per sample"
+        );
+        let ids: Vec<&str> = lines[0]["half_joint_ids"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_str().unwrap())
+            .collect();
+        assert_eq!(
+            ids,
+            ev.half_joint_ids
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+        );
         let mut events = 0;
         for (i, l) in lines[1..].iter().enumerate() {
             assert_eq!(l["t_s"].as_f64().unwrap(), via_json(ev.timeline.t_s[i]));
             for h in 0..ids.len() {
-                assert_eq!(l["capacity"][h].as_f64().unwrap(), via_json(ev.timeline.capacity[i][h]), "sample {i} {}", ids[h]);
-                assert_eq!(l["fatigue_u_min"][h].as_f64().unwrap(), via_json(ev.timeline.fatigue_u_min[i][h]), "sample {i} {}", ids[h]);
+                assert_eq!(
+                    l["capacity"][h].as_f64().unwrap(),
+                    via_json(ev.timeline.capacity[i][h]),
+                    "sample {i} {}",
+                    ids[h]
+                );
+                assert_eq!(
+                    l["fatigue_u_min"][h].as_f64().unwrap(),
+                    via_json(ev.timeline.fatigue_u_min[i][h]),
+                    "sample {i} {}",
+                    ids[h]
+                );
             }
             events += l["exhausted"].as_array().unwrap().len();
         }
         assert_eq!(events, ev.exhaustions.len());
         let last = lines.last().unwrap();
         for h in 0..ids.len() {
-            assert_eq!(last["capacity"][h].as_f64().unwrap(), via_json(ev.final_capacity[h]));
-            assert_eq!(last["fatigue_u_min"][h].as_f64().unwrap(), via_json(ev.final_fatigue_u_min[h]));
+            assert_eq!(
+                last["capacity"][h].as_f64().unwrap(),
+                via_json(ev.final_capacity[h])
+            );
+            assert_eq!(
+                last["fatigue_u_min"][h].as_f64().unwrap(),
+                via_json(ev.final_fatigue_u_min[h])
+            );
         }
     }
     // the recording did fatigue someone: the comparison is not between fresh states
-    assert!(ev.final_capacity.iter().any(|&c| c < 0.99), "{:?}", ev.final_capacity);
+    assert!(
+        ev.final_capacity.iter().any(|&c| c < 0.99),
+        "{:?}",
+        ev.final_capacity
+    );
 }
 
 #[test]
@@ -367,8 +479,14 @@ fn offline_and_streaming_agree_exactly_on_the_command_line() {
         let l = &lines[i + 1];
         assert_eq!(l["t_s"], off["timeline"]["t_s"][i]);
         for h in 0..nh {
-            assert_eq!(l["capacity"][h], off["timeline"]["capacity"][i][h], "sample {i}, half-joint {h}");
-            assert_eq!(l["fatigue_u_min"][h], off["timeline"]["fatigue_u_min"][i][h], "sample {i}, half-joint {h}");
+            assert_eq!(
+                l["capacity"][h], off["timeline"]["capacity"][i][h],
+                "sample {i}, half-joint {h}"
+            );
+            assert_eq!(
+                l["fatigue_u_min"][h], off["timeline"]["fatigue_u_min"][i][h],
+                "sample {i}, half-joint {h}"
+            );
         }
     }
     assert_eq!(lines[n]["capacity"], off["final_capacity"]);
@@ -397,7 +515,8 @@ fn streaming_answers_each_sample_before_the_next_arrives() {
     let wait = Duration::from_secs(30);
     stdin.write_all(b"t_s,r_elbow_flexion,load_kg\n").unwrap();
     stdin.flush().unwrap();
-    let head: serde_json::Value = serde_json::from_str(&rx.recv_timeout(wait).expect("the column line")).unwrap();
+    let head: serde_json::Value =
+        serde_json::from_str(&rx.recv_timeout(wait).expect("the column line")).unwrap();
     let ids = head["half_joint_ids"].as_array().unwrap();
     let h = ids.iter().position(|v| v == "r_elbow_flexion+").unwrap();
     let mut previous = 1.0;
@@ -405,14 +524,19 @@ fn streaming_answers_each_sample_before_the_next_arrives() {
         stdin.write_all(format!("{s},1.2,3\n").as_bytes()).unwrap();
         stdin.flush().unwrap();
         // the answer must come while standard input stays open
-        let l = rx.recv_timeout(wait).unwrap_or_else(|_| panic!("no answer to sample {i} within {wait:?}"));
+        let l = rx
+            .recv_timeout(wait)
+            .unwrap_or_else(|_| panic!("no answer to sample {i} within {wait:?}"));
         let v: serde_json::Value = serde_json::from_str(&l).unwrap();
         assert_eq!(v["t_s"].as_f64().unwrap(), *s, "sample {i}");
         let c = v["capacity"][h].as_f64().unwrap();
         if i == 0 {
             assert_eq!(c, 1.0);
         } else {
-            assert!(c < previous, "holding 3 kg wears the elbow flexors down: {c} after {previous}");
+            assert!(
+                c < previous,
+                "holding 3 kg wears the elbow flexors down: {c} after {previous}"
+            );
         }
         previous = c;
     }
@@ -437,15 +561,35 @@ fn a_plan_written_as_a_recording_evaluates_to_the_plans_own_fatigue() {
     let task = write(dir.path(), "task.yaml", PLAN_TASK);
     let rec = dir.path().join("plan.csv");
     let (task_s, rec_s) = (task.display().to_string(), rec.display().to_string());
-    let plan = Run::new(&["plan", task_s.as_str(), "--recording", rec_s.as_str(), "--json"]).go();
+    let plan = Run::new(&[
+        "plan",
+        task_s.as_str(),
+        "--recording",
+        rec_s.as_str(),
+        "--json",
+    ])
+    .go();
     plan.ok();
     let p = plan.json();
-    let ev = Run::new(&["evaluate", rec_s.as_str(), "--task", task_s.as_str(), "--json"]).go();
+    let ev = Run::new(&[
+        "evaluate",
+        rec_s.as_str(),
+        "--task",
+        task_s.as_str(),
+        "--json",
+    ])
+    .go();
     ev.ok();
     let e = ev.json();
     let s = &p["summary"];
-    assert!(s["exhaustion"].is_null(), "the plan must run its course for the comparison");
-    assert!(s["replans"].as_u64().unwrap() > 1, "the recording should hold several postures");
+    assert!(
+        s["exhaustion"].is_null(),
+        "the plan must run its course for the comparison"
+    );
+    assert!(
+        s["replans"].as_u64().unwrap() > 1,
+        "the recording should hold several postures"
+    );
     assert_eq!(p["half_joint_ids"], e["half_joint_ids"]);
     let steps = &p["steps"];
     let n_steps = steps["t_s"].as_array().unwrap().len();
@@ -467,10 +611,17 @@ fn a_plan_written_as_a_recording_evaluates_to_the_plans_own_fatigue() {
     let num = |v: &serde_json::Value| v.as_f64().unwrap();
     for h in 0..nh {
         let (a, b) = (num(&s["final_capacity"][h]), num(&e["final_capacity"][h]));
-        assert!(rel_diff(b, a) < tol, "final capacity of {}: plan {a}, evaluation {b}", p["half_joint_ids"][h]);
+        assert!(
+            rel_diff(b, a) < tol,
+            "final capacity of {}: plan {a}, evaluation {b}",
+            p["half_joint_ids"][h]
+        );
     }
     let (a, b) = (num(&s["total_u"]), num(&e["total_u_min"]));
-    assert!(a > 0.0 && rel_diff(b, a) < tol, "total U: plan {a}, evaluation {b}");
+    assert!(
+        a > 0.0 && rel_diff(b, a) < tol,
+        "total U: plan {a}, evaluation {b}"
+    );
     assert!(rel_diff(num(&e["duration_s"]), num(&s["duration_s"])) < tol);
     // step by step: the sample after step i carries the state at the step's end, and sample i
     // the step's loads
@@ -480,11 +631,26 @@ fn a_plan_written_as_a_recording_evaluates_to_the_plans_own_fatigue() {
         assert_eq!(num(&tl["t_s"][i]), num(&steps["t_s"][i]));
         let posture = steps["posture"][i].as_u64().unwrap() as usize;
         for h in 0..nh {
-            let (a, b) = (num(&steps["capacity"][i][h]), num(&tl["capacity"][i + 1][h]));
-            assert!(rel_diff(b, a) < tol, "step {i}, half-joint {h}: capacity {a} vs {b}");
-            let (a, b) = (num(&steps["fatigue_u_min"][i][h]), num(&tl["fatigue_u_min"][i + 1][h]));
-            assert!((b - a).abs() <= tol * a.abs(), "step {i}, half-joint {h}: U {a} vs {b}");
-            let (a, b) = (num(&p["postures"][posture]["load"][h]), num(&tl["load"][i][h]));
+            let (a, b) = (
+                num(&steps["capacity"][i][h]),
+                num(&tl["capacity"][i + 1][h]),
+            );
+            assert!(
+                rel_diff(b, a) < tol,
+                "step {i}, half-joint {h}: capacity {a} vs {b}"
+            );
+            let (a, b) = (
+                num(&steps["fatigue_u_min"][i][h]),
+                num(&tl["fatigue_u_min"][i + 1][h]),
+            );
+            assert!(
+                (b - a).abs() <= tol * a.abs(),
+                "step {i}, half-joint {h}: U {a} vs {b}"
+            );
+            let (a, b) = (
+                num(&p["postures"][posture]["load"][h]),
+                num(&tl["load"][i][h]),
+            );
             assert_eq!(a, b, "step {i}, half-joint {h}: load");
         }
     }
@@ -501,73 +667,179 @@ fn refused(name: &str, text: &str, needles: &[&str]) {
     let mut all = vec![file_s.as_str()];
     all.extend_from_slice(needles);
     o.bad(&all);
-    assert!(!out.exists(), "{name}: an output was written for a bad recording");
-    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
-    assert_eq!(left, vec![std::ffi::OsString::from(name)], "{name}: files left behind");
+    assert!(
+        !out.exists(),
+        "{name}: an output was written for a bad recording"
+    );
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(
+        left,
+        vec![std::ffi::OsString::from(name)],
+        "{name}: files left behind"
+    );
 }
 
 #[test]
 fn bad_recordings_are_located_and_nothing_is_written() {
     let head = "t_s,r_elbow_flexion,load_kg\n";
     // time that does not increase (the message names the line; see the report on the column)
-    refused("repeat.csv", &format!("{head}0,0.5,1\n1,0.5,2\n1,0.5,2\n"), &["line 4", "does not increase"]);
-    refused("back.csv", &format!("{head}0,0.5,1\n-1,0.5,2\n"), &["line 3", "does not increase"]);
+    refused(
+        "repeat.csv",
+        &format!("{head}0,0.5,1\n1,0.5,2\n1,0.5,2\n"),
+        &["line 4", "does not increase"],
+    );
+    refused(
+        "back.csv",
+        &format!("{head}0,0.5,1\n-1,0.5,2\n"),
+        &["line 3", "does not increase"],
+    );
     // not-a-number, infinite, not a number, empty
-    refused("nan.csv", &format!("{head}0,0.5,1\n1,NaN,2\n"), &["line 3, column 2 (r_elbow_flexion)", "not finite"]);
-    refused("inf.csv", &format!("{head}0,0.5,1\n1,0.5,inf\n"), &["line 3, column 3 (load_kg)", "not finite"]);
-    refused("word.csv", &format!("{head}0,abc,1\n"), &["line 2, column 2 (r_elbow_flexion)", "'abc' is not a number"]);
-    refused("empty_cell.csv", &format!("{head}0,0.5,1\n1,0.5,\n"), &["line 3, column 3 (load_kg)", "missing value"]);
-    refused("nan_time.csv", &format!("{head}0,0.5,1\nNaN,0.5,2\n"), &["line 3, column 1 (t_s)", "not finite"]);
+    refused(
+        "nan.csv",
+        &format!("{head}0,0.5,1\n1,NaN,2\n"),
+        &["line 3, column 2 (r_elbow_flexion)", "not finite"],
+    );
+    refused(
+        "inf.csv",
+        &format!("{head}0,0.5,1\n1,0.5,inf\n"),
+        &["line 3, column 3 (load_kg)", "not finite"],
+    );
+    refused(
+        "word.csv",
+        &format!("{head}0,abc,1\n"),
+        &[
+            "line 2, column 2 (r_elbow_flexion)",
+            "'abc' is not a number",
+        ],
+    );
+    refused(
+        "empty_cell.csv",
+        &format!("{head}0,0.5,1\n1,0.5,\n"),
+        &["line 3, column 3 (load_kg)", "missing value"],
+    );
+    refused(
+        "nan_time.csv",
+        &format!("{head}0,0.5,1\nNaN,0.5,2\n"),
+        &["line 3, column 1 (t_s)", "not finite"],
+    );
     // wrong column names
-    refused("typo.csv", "t_s,r_elbw_flexion,load_kg\n0,0.5,1\n", &["line 1", "column 2", "r_elbw_flexion", "did you mean 'r_elbow_flexion'"]);
-    refused("knee.csv", "t_s,r_knee,load_kg\n0,0.5,1\n", &["line 1", "column 2", "'r_knee'"]);
-    refused("first.csv", "time_s,r_elbow_flexion,load_kg\n0,0.5,1\n", &["line 1", "first column", "t_s", "'time_s'"]);
-    refused("twice.csv", "t_s,r_elbow_flexion,r_elbow_flexion\n0,0.5,0.5\n", &["line 1", "column 3", "twice"]);
+    refused(
+        "typo.csv",
+        "t_s,r_elbw_flexion,load_kg\n0,0.5,1\n",
+        &[
+            "line 1",
+            "column 2",
+            "r_elbw_flexion",
+            "did you mean 'r_elbow_flexion'",
+        ],
+    );
+    refused(
+        "knee.csv",
+        "t_s,r_knee,load_kg\n0,0.5,1\n",
+        &["line 1", "column 2", "'r_knee'"],
+    );
+    refused(
+        "first.csv",
+        "time_s,r_elbow_flexion,load_kg\n0,0.5,1\n",
+        &["line 1", "first column", "t_s", "'time_s'"],
+    );
+    refused(
+        "twice.csv",
+        "t_s,r_elbow_flexion,r_elbow_flexion\n0,0.5,0.5\n",
+        &["line 1", "column 3", "twice"],
+    );
     // missing columns: a row too short, a force without all three components
-    refused("short.csv", &format!("{head}0,0.5,1\n1,0.5\n"), &["line 3, column 3 (load_kg)", "missing value"]);
-    refused("force.csv", "t_s,r_elbow_flexion,force_x_n,force_z_n\n0,0.5,0,-10\n", &["line 1", "force", "three columns"]);
-    refused("long.csv", &format!("{head}0,0.5,1\n1,0.5,1,7\n"), &["line 3", "more values"]);
+    refused(
+        "short.csv",
+        &format!("{head}0,0.5,1\n1,0.5\n"),
+        &["line 3, column 3 (load_kg)", "missing value"],
+    );
+    refused(
+        "force.csv",
+        "t_s,r_elbow_flexion,force_x_n,force_z_n\n0,0.5,0,-10\n",
+        &["line 1", "force", "three columns"],
+    );
+    refused(
+        "long.csv",
+        &format!("{head}0,0.5,1\n1,0.5,1,7\n"),
+        &["line 3", "more values"],
+    );
     // degrees written where radians are read
     let degrees = format!("{head}0,30,1\n1,90,2\n2,120,2\n");
-    refused("degrees.csv", &degrees, &["line 2", "r_elbow_flexion", "30", "--degrees"]);
+    refused(
+        "degrees.csv",
+        &degrees,
+        &["line 2", "r_elbow_flexion", "30", "--degrees"],
+    );
     refused("nothing.csv", head, &["no samples"]);
     // the same file with --degrees is fine, and then the output is written (one row per sample)
     let dir = tempdir();
     let file = write(dir.path(), "degrees.csv", &degrees);
     let out = dir.path().join("out.csv");
     let (file_s, out_s) = (file.display().to_string(), out.display().to_string());
-    Run::new(&["evaluate", file_s.as_str(), "--degrees", "--csv", out_s.as_str()])
-        .go()
-        .ok();
+    Run::new(&[
+        "evaluate",
+        file_s.as_str(),
+        "--degrees",
+        "--csv",
+        out_s.as_str(),
+    ])
+    .go()
+    .ok();
     let written = std::fs::read_to_string(&out).unwrap();
-    assert!(written.starts_with("t_s,capacity_"), "{}", &written[..written.len().min(200)]);
+    assert!(
+        written.starts_with("t_s,capacity_"),
+        "{}",
+        &written[..written.len().min(200)]
+    );
     assert_eq!(written.lines().count(), 4);
 }
 
 #[test]
 fn bad_samples_are_located_in_the_library_and_on_standard_input() {
-    use posture_opt::record::run::RunError;
     use posture_opt::record::RecordingError;
+    use posture_opt::record::run::RunError;
     let t = record::default_setup(posture_opt::body::Worker::MALE_50, None).unwrap();
     let r = record::evaluate(
         &t,
         Input::Csv {
-            reader: std::io::Cursor::new("t_s,r_elbow_flexion,load_kg\n0,0.5,1\n1,NaN,2\n".as_bytes()),
+            reader: std::io::Cursor::new(
+                "t_s,r_elbow_flexion,load_kg\n0,0.5,1\n1,NaN,2\n".as_bytes(),
+            ),
             name: "r.csv".into(),
         },
         &Options::default(),
         None,
     );
     match r {
-        Err(RunError::Recording(RecordingError::Cell { source_name, line, column, name, .. })) => {
-            assert_eq!((source_name.as_str(), line, column, name.as_str()), ("r.csv", 3, 2, "r_elbow_flexion"));
+        Err(RunError::Recording(RecordingError::Cell {
+            source_name,
+            line,
+            column,
+            name,
+            ..
+        })) => {
+            assert_eq!(
+                (source_name.as_str(), line, column, name.as_str()),
+                ("r.csv", 3, 2, "r_elbow_flexion")
+            );
         }
-        other => panic!("expected a located cell error, got {:?}", other.map(|e| e.samples)),
+        other => panic!(
+            "expected a located cell error, got {:?}",
+            other.map(|e| e.samples)
+        ),
     }
     // live: the samples before the bad one are answered, then exit 2 naming the line
     let o = Run::new(&["evaluate", "--stream"])
         .stdin("t_s,r_elbow_flexion,load_kg\n0,0.5,1\n1,0.5,1\n0.5,0.5,1\n")
         .go();
     o.bad(&["stdin: line 4", "does not increase"]);
-    assert_eq!(o.stdout_text().lines().count(), 3, "column line and two samples before the bad one");
+    assert_eq!(
+        o.stdout_text().lines().count(),
+        3,
+        "column line and two samples before the bad one"
+    );
 }

@@ -7,13 +7,19 @@
 //! parameters in `synthetic_truth.json` — independently of the library's closed forms and of its
 //! intermittent-work simulation. Noise is multiplicative, `exp(N(0, 0.05²))`, from a fixed seed.
 
-use posture_opt::fatigue::fit::{fit, parse_rows, predict, Fit, FitError, FitOptions, Measured, Row};
+use posture_opt::fatigue::fit::{
+    Fit, FitError, FitOptions, Measured, Row, fit, parse_rows, predict,
+};
 use posture_opt::fatigue::params::ParameterSets;
 use posture_opt::fatigue::{MaParams, Recovery};
 use serde_json::Value;
 
 fn data(name: &str) -> String {
-    std::fs::read_to_string(format!("{}/tests/data/fatigue/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    std::fs::read_to_string(format!(
+        "{}/tests/data/fatigue/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
 }
 
 struct Truth {
@@ -26,7 +32,12 @@ struct Truth {
 fn truth() -> Truth {
     let v: Value = serde_json::from_str(&data("synthetic_truth.json")).unwrap();
     Truth {
-        k: v["k_per_min"].as_object().unwrap().iter().map(|(g, k)| (g.clone(), k.as_f64().unwrap())).collect(),
+        k: v["k_per_min"]
+            .as_object()
+            .unwrap()
+            .iter()
+            .map(|(g, k)| (g.clone(), k.as_f64().unwrap()))
+            .collect(),
         rest: v["rest_per_min"].as_f64().unwrap(),
         limit: v["limit_fmvc"].as_f64().unwrap(),
         sigma: v["noise_sigma_log"].as_f64().unwrap(),
@@ -39,16 +50,35 @@ fn rows(name: &str) -> Vec<Row> {
 
 fn run(rows: &[Row]) -> Fit {
     let t = truth();
-    fit(rows, "synthetic", FitOptions { limit_fmvc: t.limit, ..FitOptions::default() }).unwrap()
+    fit(
+        rows,
+        "synthetic",
+        FitOptions {
+            limit_fmvc: t.limit,
+            ..FitOptions::default()
+        },
+    )
+    .unwrap()
 }
 
 fn k_of<'a>(fit: &'a Fit, region: &str) -> &'a posture_opt::fatigue::fit::Estimate {
-    &fit.regions.iter().find(|r| r.region == region).unwrap().k_per_min
+    &fit.regions
+        .iter()
+        .find(|r| r.region == region)
+        .unwrap()
+        .k_per_min
 }
 
 fn true_params(t: &Truth, region: &str) -> MaParams {
     let k = t.k.iter().find(|(g, _)| g == region).unwrap().1;
-    MaParams::with_recovery(k, Recovery::Perfusion { rest_per_min: t.rest, limit_fmvc: t.limit }).unwrap()
+    MaParams::with_recovery(
+        k,
+        Recovery::Perfusion {
+            rest_per_min: t.rest,
+            limit_fmvc: t.limit,
+        },
+    )
+    .unwrap()
 }
 
 /// The library's prediction at the true parameters reproduces every integrated measurement —
@@ -56,14 +86,22 @@ fn true_params(t: &Truth, region: &str) -> MaParams {
 #[test]
 fn predictions_at_the_true_parameters_match_the_integration() {
     let t = truth();
-    for name in ["synthetic_exact.csv", "synthetic_sustained.csv", "synthetic_smooth_exact.csv"] {
+    for name in [
+        "synthetic_exact.csv",
+        "synthetic_sustained.csv",
+        "synthetic_smooth_exact.csv",
+    ] {
         for row in rows(name) {
             let measured = match row.what {
                 Measured::EnduranceS(e) => e,
                 Measured::Capacity { capacity, .. } => capacity,
             };
             let predicted = predict(&true_params(&t, &row.region), &row);
-            assert!((predicted / measured - 1.0).abs() < 1e-9, "{name} line {}: {predicted} vs {measured}", row.line);
+            assert!(
+                (predicted / measured - 1.0).abs() < 1e-9,
+                "{name} line {}: {predicted} vs {measured}",
+                row.line
+            );
         }
     }
 }
@@ -87,9 +125,18 @@ fn check_noise_free(name: &str) {
     assert_eq!(f.parameters, t.k.len() + 1);
     for (region, k) in &t.k {
         let e = k_of(&f, region);
-        assert!((e.value / k - 1.0).abs() < 1e-4, "{name} {region}: k {} vs {k}", e.value);
+        assert!(
+            (e.value / k - 1.0).abs() < 1e-4,
+            "{name} {region}: k {} vs {k}",
+            e.value
+        );
     }
-    assert!((f.rest_per_min.value / t.rest - 1.0).abs() < 1e-4, "R_rest {} vs {}", f.rest_per_min.value, t.rest);
+    assert!(
+        (f.rest_per_min.value / t.rest - 1.0).abs() < 1e-4,
+        "R_rest {} vs {}",
+        f.rest_per_min.value,
+        t.rest
+    );
     assert!(f.rms_log_error < 1e-6, "{}", f.rms_log_error);
 }
 
@@ -117,15 +164,25 @@ fn check_noisy_cover(name: &str) {
     for (region, k) in &t.k {
         let e = k_of(&f, region);
         if !(e.low < *k && *k < e.high && (e.value / k - 1.0).abs() < 0.10) {
-            failures.push(format!("{region}: k = {k} vs {} [{}, {}]", e.value, e.low, e.high));
+            failures.push(format!(
+                "{region}: k = {k} vs {} [{}, {}]",
+                e.value, e.low, e.high
+            ));
         }
     }
     let r = f.rest_per_min;
     if !(r.low < t.rest && t.rest < r.high && (r.value / t.rest - 1.0).abs() < 0.10) {
-        failures.push(format!("R_rest = {} vs {} [{}, {}]", t.rest, r.value, r.low, r.high));
+        failures.push(format!(
+            "R_rest = {} vs {} [{}, {}]",
+            t.rest, r.value, r.low, r.high
+        ));
     }
     assert!(failures.is_empty(), "{name}: {failures:#?}");
-    assert!((f.rms_log_error / t.sigma - 1.0).abs() < 0.6, "rms {}", f.rms_log_error);
+    assert!(
+        (f.rms_log_error / t.sigma - 1.0).abs() < 0.6,
+        "rms {}",
+        f.rms_log_error
+    );
 }
 
 /// Sustained endurance and capacity rows (within sustained and intermittent work): every
@@ -160,9 +217,19 @@ fn confidence_intervals_shrink_with_more_data() {
     let mut pairs: Vec<(String, f64, f64)> = truth()
         .k
         .iter()
-        .map(|(region, _)| (region.clone(), width(k_of(&one, region)), width(k_of(&four, region))))
+        .map(|(region, _)| {
+            (
+                region.clone(),
+                width(k_of(&one, region)),
+                width(k_of(&four, region)),
+            )
+        })
         .collect();
-    pairs.push(("R_rest".into(), width(&one.rest_per_min), width(&four.rest_per_min)));
+    pairs.push((
+        "R_rest".into(),
+        width(&one.rest_per_min),
+        width(&four.rest_per_min),
+    ));
     for (name, w1, w4) in pairs {
         assert!(w4 < w1, "{name}: {w4} vs {w1}");
         let per_s = (w4 / s4) / (w1 / s1);
@@ -188,7 +255,10 @@ fn confidence_intervals_have_their_coverage() {
                 let m = (t.sigma * rng.normal()).exp();
                 let what = match r.what {
                     Measured::EnduranceS(e) => Measured::EnduranceS(e * m),
-                    Measured::Capacity { t_s, capacity } => Measured::Capacity { t_s, capacity: (capacity * m).min(1.0) },
+                    Measured::Capacity { t_s, capacity } => Measured::Capacity {
+                        t_s,
+                        capacity: (capacity * m).min(1.0),
+                    },
                 };
                 Row { what, ..r.clone() }
             })
@@ -198,7 +268,8 @@ fn confidence_intervals_have_their_coverage() {
             let e = k_of(&f, region);
             covered[i] += usize::from(e.low <= *k && *k <= e.high);
         }
-        covered[names.len()] += usize::from(f.rest_per_min.low <= t.rest && t.rest <= f.rest_per_min.high);
+        covered[names.len()] +=
+            usize::from(f.rest_per_min.low <= t.rest && t.rest <= f.rest_per_min.high);
     }
     for (i, c) in covered.iter().enumerate() {
         let name = names.get(i).map_or("R_rest", String::as_str);
@@ -231,11 +302,20 @@ fn fit_as_parameter_set() {
     let set = f.parameter_set(base);
     for r in &f.regions {
         let rk = set.regions[&r.region];
-        assert_eq!((rk.k, rk.k_low, rk.k_high), (r.k_per_min.value, r.k_per_min.low, r.k_per_min.high));
+        assert_eq!(
+            (rk.k, rk.k_low, rk.k_high),
+            (r.k_per_min.value, r.k_per_min.low, r.k_per_min.high)
+        );
     }
     assert_eq!(set.regions["ankle"], base.regions["ankle"]);
     assert_eq!(set.regions["elbow"], base.regions["elbow"]);
-    assert_eq!(set.recovery.recovery(), Recovery::Perfusion { rest_per_min: f.rest_per_min.value, limit_fmvc: truth().limit });
+    assert_eq!(
+        set.recovery.recovery(),
+        Recovery::Perfusion {
+            rest_per_min: f.rest_per_min.value,
+            limit_fmvc: truth().limit
+        }
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -246,10 +326,22 @@ const HEADER: &str = "region,load_fmvc,on_s,off_s,endurance_s,t_s,capacity";
 
 fn row_error(text: &str) -> (usize, String) {
     match parse_rows(text, "bad.csv") {
-        Err(FitError::Row { file, line, problem }) => {
+        Err(FitError::Row {
+            file,
+            line,
+            problem,
+        }) => {
             assert_eq!(file, "bad.csv");
-            let shown = FitError::Row { file: file.clone(), line, problem: problem.clone() }.to_string();
-            assert!(shown.starts_with(&format!("bad.csv: line {line}: ")), "{shown}");
+            let shown = FitError::Row {
+                file: file.clone(),
+                line,
+                problem: problem.clone(),
+            }
+            .to_string();
+            assert!(
+                shown.starts_with(&format!("bad.csv: line {line}: ")),
+                "{shown}"
+            );
             (line, problem)
         }
         other => panic!("expected a row error, got {other:?}"),
@@ -267,7 +359,10 @@ fn bad_rows_are_refused_with_their_line() {
         ("grip,0.5,,,NaN,,", "not a finite number"),
         ("grip,0.5,,,inf,,", "not a finite number"),
         ("grip,0.5,,,-3,,", "endurance_s"),
-        ("grip,0.5,,,120,60,0.5", "give endurance_s, or t_s and capacity"),
+        (
+            "grip,0.5,,,120,60,0.5",
+            "give endurance_s, or t_s and capacity",
+        ),
         ("grip,0.5,,,,60,1.2", "capacity"),
         ("grip,0.5,,5,120,,", "off_s needs on_s"),
         ("grip,0.5,-5,5,120,,", "on_s and off_s"),
@@ -278,7 +373,10 @@ fn bad_rows_are_refused_with_their_line() {
         let text = format!("{HEADER}\n{good}\n{good}\n{bad}\n{good}\n");
         let (line, problem) = row_error(&text);
         assert_eq!(line, 4, "{bad}: {problem}");
-        assert!(problem.contains(expect), "{bad}: '{problem}' lacks '{expect}'");
+        assert!(
+            problem.contains(expect),
+            "{bad}: '{problem}' lacks '{expect}'"
+        );
     }
     // a row with a missing field
     let (line, _) = row_error(&format!("{HEADER}\n{good}\ngrip,0.5,,\n"));
@@ -305,11 +403,21 @@ fn bad_files_are_refused() {
         }
         other => panic!("expected a data error, got {other:?}"),
     };
-    assert!(data_error("region,load_fmvc,endurance,t_s\ngrip,0.5,120,\n").contains("unknown column 'endurance'"));
+    assert!(
+        data_error("region,load_fmvc,endurance,t_s\ngrip,0.5,120,\n")
+            .contains("unknown column 'endurance'")
+    );
     assert!(data_error("region,endurance_s\ngrip,120\n").contains("load_fmvc"));
     assert!(data_error(&format!("{HEADER}\n")).contains("no measurements"));
     assert!(data_error("").contains("load_fmvc") || data_error("").contains("no measurements"));
     // more parameters than measurements cannot give intervals
-    let rows = parse_rows(&format!("{HEADER}\ngrip,0.5,,,120,,\nknee,0.5,,,90,,\n"), "two.csv").unwrap();
-    assert!(matches!(fit(&rows, "two.csv", FitOptions::default()), Err(FitError::Data { .. })));
+    let rows = parse_rows(
+        &format!("{HEADER}\ngrip,0.5,,,120,,\nknee,0.5,,,90,,\n"),
+        "two.csv",
+    )
+    .unwrap();
+    assert!(matches!(
+        fit(&rows, "two.csv", FitOptions::default()),
+        Err(FitError::Data { .. })
+    ));
 }

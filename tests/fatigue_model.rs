@@ -9,8 +9,8 @@
 
 use posture_opt::fatigue::dual::Dual2;
 use posture_opt::fatigue::ma::{K_MAX_PER_MIN, K_MIN_PER_MIN, R_MAX_PER_MIN};
-use posture_opt::fatigue::schedule::{lowest_end_capacity, repeated_cycles, HeldStep};
-use posture_opt::fatigue::{met_min, FatigueModel, MaParams, MaState, Recovery};
+use posture_opt::fatigue::schedule::{HeldStep, lowest_end_capacity, repeated_cycles};
+use posture_opt::fatigue::{FatigueModel, MaParams, MaState, Recovery, met_min};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------------------------
@@ -60,11 +60,40 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
         [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
         [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-        [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
-        [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
-        [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+        [
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+            0.0,
+            0.0,
+        ],
+        [
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+            0.0,
+        ],
+        [
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
     ];
-    const B: [f64; 7] = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
+    const B: [f64; 7] = [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+        0.0,
+    ];
     const E: [f64; 7] = [
         71.0 / 57600.0,
         0.0,
@@ -81,7 +110,10 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
     let mut steps = 0u64;
     while t < t_min {
         steps += 1;
-        assert!(steps < 20_000_000, "integration did not finish: k={k} r={r} f={f} c0={c0} t={t_min}");
+        assert!(
+            steps < 20_000_000,
+            "integration did not finish: k={k} r={r} f={f} c0={c0} t={t_min}"
+        );
         if t + h >= t_min {
             h = t_min - t;
         }
@@ -106,7 +138,11 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
         // U's rate now, held for the time left, already passes 1e306 (the rate only grows
         // while capacity falls): U overflows.
         if du(y) * (t_min - t) > 1e306 && dy(y) <= 0.0 {
-            return Integrated { capacity: y.exp(), du_min: u, overflow: true };
+            return Integrated {
+                capacity: y.exp(),
+                du_min: u,
+                overflow: true,
+            };
         }
         // (f64::max drops a NaN, so a step whose U overflowed must be rejected explicitly.)
         if !err.is_finite() || !u5.is_finite() {
@@ -118,13 +154,25 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
             y = y5;
             u = u5;
             if u > 1e306 {
-                return Integrated { capacity: y.exp(), du_min: u, overflow: true };
+                return Integrated {
+                    capacity: y.exp(),
+                    du_min: u,
+                    overflow: true,
+                };
             }
         }
-        let fac = if err == 0.0 { 5.0 } else { (0.9 * err.powf(-0.2)).clamp(0.2, 5.0) };
+        let fac = if err == 0.0 {
+            5.0
+        } else {
+            (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+        };
         h *= fac;
     }
-    Integrated { capacity: y.exp(), du_min: u, overflow: false }
+    Integrated {
+        capacity: y.exp(),
+        du_min: u,
+        overflow: false,
+    }
 }
 
 fn close(a: f64, b: f64, rel: f64) -> bool {
@@ -193,7 +241,10 @@ fn c0_strategy() -> impl Strategy<Value = f64> {
 
 /// Checks one hold against the integration; `Err` describes the disagreement.
 fn check_hold(p: &MaParams, f: f64, dt_s: f64, c0: f64, u0: f64) -> Result<(), String> {
-    let mut s = MaState { capacity: c0, fatigue_u_min: u0 };
+    let mut s = MaState {
+        capacity: c0,
+        fatigue_u_min: u0,
+    };
     let ok = p.hold(&mut s, f, dt_s);
     let reference = integrate(p.k_per_min, rate(&p.recovery, f), f, c0, dt_s / 60.0);
     if !(s.capacity > 0.0 && s.capacity <= 1.0) {
@@ -203,18 +254,30 @@ fn check_hold(p: &MaParams, f: f64, dt_s: f64, c0: f64, u0: f64) -> Result<(), S
         // U beyond 1e306 (the integration stopped there, capacity still falling): the library
         // must say so, or give a value of that size.
         if s.capacity > reference.capacity * (1.0 + 1e-9) {
-            return Err(format!("capacity {:e} above the integrated {:e} at U = 1e306", s.capacity, reference.capacity));
+            return Err(format!(
+                "capacity {:e} above the integrated {:e} at U = 1e306",
+                s.capacity, reference.capacity
+            ));
         }
         if ok && s.fatigue_u_min < 1e305 {
-            return Err(format!("U {} but the integrated U passed 1e306", s.fatigue_u_min));
+            return Err(format!(
+                "U {} but the integrated U passed 1e306",
+                s.fatigue_u_min
+            ));
         }
         return Ok(());
     }
     if !close(s.capacity, reference.capacity, 1e-9) {
-        return Err(format!("capacity {:e} vs integrated {:e}", s.capacity, reference.capacity));
+        return Err(format!(
+            "capacity {:e} vs integrated {:e}",
+            s.capacity, reference.capacity
+        ));
     }
     if !ok {
-        return Err(format!("hold reported an overflow; integrated ΔU = {}", reference.du_min));
+        return Err(format!(
+            "hold reported an overflow; integrated ΔU = {}",
+            reference.du_min
+        ));
     }
     let du = s.fatigue_u_min - u0;
     if !((du - reference.du_min).abs() <= 1e-8 * reference.du_min + 4.0 * f64::EPSILON * u0) {
@@ -337,14 +400,28 @@ fn eleven_hour_hold_with_constant_recovery() {
     let lambda = k * f + r;
     let c_inf = r / lambda;
     assert!((c_inf - 6.0 / 11.0).abs() < 1e-15);
-    assert!((s.capacity - c_inf).abs() < 1e-14, "capacity {} vs c∞ {c_inf}", s.capacity);
+    assert!(
+        (s.capacity - c_inf).abs() < 1e-14,
+        "capacity {} vs c∞ {c_inf}",
+        s.capacity
+    );
     let linear = f / (c_inf * c_inf) * t_min;
     assert!((linear - 554.583_333_333_333_3).abs() < 1e-9);
-    let by_hand = linear + f / (lambda * c_inf * c_inf) * c_inf.ln() - f / (lambda * c_inf) * (1.0 / c_inf - 1.0);
-    assert!((s.fatigue_u_min - by_hand).abs() < 1e-9 * by_hand, "U {} vs {by_hand}", s.fatigue_u_min);
+    let by_hand = linear + f / (lambda * c_inf * c_inf) * c_inf.ln()
+        - f / (lambda * c_inf) * (1.0 / c_inf - 1.0);
+    assert!(
+        (s.fatigue_u_min - by_hand).abs() < 1e-9 * by_hand,
+        "U {} vs {by_hand}",
+        s.fatigue_u_min
+    );
     assert!((s.fatigue_u_min - 553.0).abs() < 0.1);
     let reference = integrate(k, r, f, 1.0, t_min);
-    assert!(close(s.fatigue_u_min, reference.du_min, 1e-9), "{} vs {}", s.fatigue_u_min, reference.du_min);
+    assert!(
+        close(s.fatigue_u_min, reference.du_min, 1e-9),
+        "{} vs {}",
+        s.fatigue_u_min,
+        reference.du_min
+    );
 }
 
 /// Holds of 24 h and 48 h under every load of the shipped default set's regions: finite capacity
@@ -355,7 +432,9 @@ fn eleven_hour_hold_with_constant_recovery() {
 fn day_long_holds_stay_finite_or_report_overflow() {
     let sets = posture_opt::fatigue::params::ParameterSets::shipped();
     let set = sets.get(&sets.default_set).unwrap();
-    for region in ["trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle"] {
+    for region in [
+        "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle",
+    ] {
         let p = set.params(region, posture_opt::body::Sex::Male).unwrap();
         for hours in [24.0, 36.0, 48.0] {
             let t_min = hours * 60.0;
@@ -370,17 +449,29 @@ fn day_long_holds_stay_finite_or_report_overflow() {
                 } else if r > 0.0 {
                     let lambda = p.k_per_min * f + r;
                     let c_inf = r / lambda;
-                    let by_hand = f * t_min / (c_inf * c_inf) + f / (lambda * c_inf * c_inf) * c_inf.ln()
+                    let by_hand = f * t_min / (c_inf * c_inf)
+                        + f / (lambda * c_inf * c_inf) * c_inf.ln()
                         - f / (lambda * c_inf) * (1.0 / c_inf - 1.0);
                     assert!(ok, "{region} f={f} {hours} h: overflow reported");
-                    assert!(close(s.fatigue_u_min, by_hand, 1e-10), "{region} f={f} {hours} h: U {} vs {by_hand}", s.fatigue_u_min);
+                    assert!(
+                        close(s.fatigue_u_min, by_hand, 1e-10),
+                        "{region} f={f} {hours} h: U {} vs {by_hand}",
+                        s.fatigue_u_min
+                    );
                 } else {
                     let x = 2.0 * p.k_per_min * f * t_min;
                     let ln_u = x + (-(-x).exp_m1()).ln() - (2.0 * p.k_per_min).ln();
                     if ln_u < 709.0 {
-                        assert!(ok && close(s.fatigue_u_min.ln(), ln_u, 1e-12), "{region} f={f}");
+                        assert!(
+                            ok && close(s.fatigue_u_min.ln(), ln_u, 1e-12),
+                            "{region} f={f}"
+                        );
                     } else if ln_u > 710.0 {
-                        assert!(!ok && s.fatigue_u_min == f64::MAX, "{region} f={f}: U {}", s.fatigue_u_min);
+                        assert!(
+                            !ok && s.fatigue_u_min == f64::MAX,
+                            "{region} f={f}: U {}",
+                            s.fatigue_u_min
+                        );
                     }
                 }
             }
@@ -399,11 +490,18 @@ fn constant_recovery_two_day_holds() {
                 let mut s = MaState::FRESH;
                 assert!(p.hold(&mut s, f, 48.0 * 3600.0), "k={k} r={r} f={f}");
                 let c_inf = r / (k * f + r);
-                assert!(close(s.capacity, c_inf, 1e-12), "k={k} r={r} f={f}: {} vs {c_inf}", s.capacity);
+                assert!(
+                    close(s.capacity, c_inf, 1e-12),
+                    "k={k} r={r} f={f}: {} vs {c_inf}",
+                    s.capacity
+                );
                 let linear = f * 2880.0 / (c_inf * c_inf);
                 assert!(s.fatigue_u_min.is_finite() && s.fatigue_u_min > 0.0);
                 // the transient's offset is below (1/λ)(f/c∞²)(|ln c∞| + 1/c∞), a small share of two days
-                assert!((s.fatigue_u_min - linear).abs() <= f / (c_inf * c_inf) * (c_inf.ln().abs() + 1.0 / c_inf) / (k * f + r));
+                assert!(
+                    (s.fatigue_u_min - linear).abs()
+                        <= f / (c_inf * c_inf) * (c_inf.ln().abs() + 1.0 / c_inf) / (k * f + r)
+                );
             }
         }
     }
@@ -415,14 +513,24 @@ fn constant_recovery_two_day_holds() {
 fn paper_equations_5_6_8() {
     let k = 0.9;
     let p = MaParams::new(k, 0.0).unwrap();
-    let steps = [(0.2, 30.0), (0.5, 12.0), (0.0, 60.0), (0.35, 45.0), (1.0, 3.0)];
+    let steps = [
+        (0.2, 30.0),
+        (0.5, 12.0),
+        (0.0, 60.0),
+        (0.35, 45.0),
+        (1.0, 3.0),
+    ];
     let mut s = MaState::FRESH;
     let mut big_f = 0.0;
     for &(f, dt_s) in &steps {
         assert!(p.hold(&mut s, f, dt_s));
         big_f += f * dt_s / 60.0;
         assert!(close(s.capacity, (-k * big_f).exp(), 1e-15));
-        assert!(close(s.fatigue_u_min, (2.0 * k * big_f).exp_m1() / (2.0 * k), 1e-14));
+        assert!(close(
+            s.fatigue_u_min,
+            (2.0 * k * big_f).exp_m1() / (2.0 * k),
+            1e-14
+        ));
     }
     // Eq. 8 at the paper's k = 1: MET(0.5) = 2 ln 2 min
     assert!((met_min(0.5, 1.0) - 2.0 * 2f64.ln()).abs() < 1e-15);
@@ -455,7 +563,11 @@ fn exhaustion_time_by_hand() {
     assert_eq!(p.time_to_exhaustion_s(0.4, 0.5), Some(0.0));
     // half capacity at MVC with k = 2, no recovery: e^{−2t} = 1/2 → t = ln 2/2 min
     let p = MaParams::new(2.0, 0.0).unwrap();
-    assert!(close(p.time_to_capacity_s(1.0, 1.0, 0.5).unwrap(), 30.0 * 2f64.ln(), 1e-13));
+    assert!(close(
+        p.time_to_capacity_s(1.0, 1.0, 0.5).unwrap(),
+        30.0 * 2f64.ln(),
+        1e-13
+    ));
 }
 
 /// The sustainable load of constant recovery solves R(1 − f) = k f² (c∞ = f):
@@ -466,10 +578,17 @@ fn sustainable_load_by_hand() {
         for r in [1e-4, 0.05, 0.3, 1.0, R_MAX_PER_MIN] {
             let p = MaParams::new(k, r).unwrap();
             let by_hand = (-r + (r * r + 4.0 * k * r).sqrt()) / (2.0 * k);
-            assert!(close(p.sustainable_load(), by_hand, 1e-10), "k={k} r={r}: {} vs {by_hand}", p.sustainable_load());
+            assert!(
+                close(p.sustainable_load(), by_hand, 1e-10),
+                "k={k} r={r}: {} vs {by_hand}",
+                p.sustainable_load()
+            );
             // just below it a hold never exhausts, just above it does
             assert_eq!(p.time_to_exhaustion_s(1.0, by_hand * (1.0 - 1e-6)), None);
-            assert!(p.time_to_exhaustion_s(1.0, (by_hand * (1.0 + 1e-6)).min(1.0)).is_some());
+            assert!(
+                p.time_to_exhaustion_s(1.0, (by_hand * (1.0 + 1e-6)).min(1.0))
+                    .is_some()
+            );
         }
         assert_eq!(MaParams::new(k, 0.0).unwrap().sustainable_load(), 0.0);
     }
@@ -479,18 +598,62 @@ fn sustainable_load_by_hand() {
 fn parameters_outside_the_documented_ranges_are_refused() {
     assert!(MaParams::new(K_MIN_PER_MIN, 0.0).is_ok());
     assert!(MaParams::new(K_MAX_PER_MIN, R_MAX_PER_MIN).is_ok());
-    for k in [0.0, K_MIN_PER_MIN * 0.99, K_MAX_PER_MIN * 1.01, f64::NAN, f64::INFINITY, -1.0] {
+    for k in [
+        0.0,
+        K_MIN_PER_MIN * 0.99,
+        K_MAX_PER_MIN * 1.01,
+        f64::NAN,
+        f64::INFINITY,
+        -1.0,
+    ] {
         assert!(MaParams::new(k, 0.0).is_err(), "k={k}");
     }
     for r in [-1e-9, R_MAX_PER_MIN * 1.01, f64::NAN, f64::INFINITY] {
         assert!(MaParams::new(1.0, r).is_err(), "r={r}");
-        assert!(MaParams::with_recovery(1.0, Recovery::Perfusion { rest_per_min: r, limit_fmvc: 0.1 }).is_err());
+        assert!(
+            MaParams::with_recovery(
+                1.0,
+                Recovery::Perfusion {
+                    rest_per_min: r,
+                    limit_fmvc: 0.1
+                }
+            )
+            .is_err()
+        );
     }
     for lim in [0.0, 0.009, 1.01, f64::NAN] {
-        assert!(MaParams::with_recovery(1.0, Recovery::Perfusion { rest_per_min: 0.3, limit_fmvc: lim }).is_err(), "lim={lim}");
+        assert!(
+            MaParams::with_recovery(
+                1.0,
+                Recovery::Perfusion {
+                    rest_per_min: 0.3,
+                    limit_fmvc: lim
+                }
+            )
+            .is_err(),
+            "lim={lim}"
+        );
     }
-    assert!(MaParams::with_recovery(1.0, Recovery::Perfusion { rest_per_min: 0.3, limit_fmvc: 0.01 }).is_ok());
-    assert!(MaParams::with_recovery(1.0, Recovery::Perfusion { rest_per_min: 0.3, limit_fmvc: 1.0 }).is_ok());
+    assert!(
+        MaParams::with_recovery(
+            1.0,
+            Recovery::Perfusion {
+                rest_per_min: 0.3,
+                limit_fmvc: 0.01
+            }
+        )
+        .is_ok()
+    );
+    assert!(
+        MaParams::with_recovery(
+            1.0,
+            Recovery::Perfusion {
+                rest_per_min: 0.3,
+                limit_fmvc: 1.0
+            }
+        )
+        .is_ok()
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -499,7 +662,10 @@ fn parameters_outside_the_documented_ranges_are_refused() {
 
 /// Holds every step of every cycle. Returns (U gained, capacity), or `None` if U overflowed.
 fn explicit_cycles(p: &MaParams, steps: &[(f64, f64)], c0: f64, n: u64) -> Option<(f64, f64)> {
-    let mut s = MaState { capacity: c0, fatigue_u_min: 0.0 };
+    let mut s = MaState {
+        capacity: c0,
+        fatigue_u_min: 0.0,
+    };
     for _ in 0..n {
         for &(f, t_min) in steps {
             if !p.hold(&mut s, f, t_min * 60.0) {
@@ -511,7 +677,10 @@ fn explicit_cycles(p: &MaParams, steps: &[(f64, f64)], c0: f64, n: u64) -> Optio
 }
 
 fn held(steps: &[(f64, f64)]) -> Vec<HeldStep<f64>> {
-    steps.iter().map(|&(f, t_min)| HeldStep { f, t_min }).collect()
+    steps
+        .iter()
+        .map(|&(f, t_min)| HeldStep { f, t_min })
+        .collect()
 }
 
 /// The documented accuracy of the O(1) sum (module docs of `schedule`): exact chains, a
@@ -525,15 +694,23 @@ fn check_cycles(p: &MaParams, steps: &[(f64, f64)], c0: f64, n: u64) -> Result<(
     let total_ln = out.u_min.u.ln() + out.u_min.ln_scale;
     match explicit_cycles(p, steps, c0, n) {
         Some((u, c)) if u < 1e290 => {
-            prop_assert!((out.capacity_end - c).abs() <= 1e-9 * c.max(1e-300) + 1e-12,
-                "{p:?} {steps:?} n={n} c0={c0}: capacity {} vs {c}", out.capacity_end);
+            prop_assert!(
+                (out.capacity_end - c).abs() <= 1e-9 * c.max(1e-300) + 1e-12,
+                "{p:?} {steps:?} n={n} c0={c0}: capacity {} vs {c}",
+                out.capacity_end
+            );
             let total = out.u_min.u * out.u_min.ln_scale.exp();
-            prop_assert!((total - u).abs() <= CYCLES_REL_TOL * u + 1e-300,
-                "{p:?} {steps:?} n={n} c0={c0}: U {total} vs explicit {u}");
+            prop_assert!(
+                (total - u).abs() <= CYCLES_REL_TOL * u + 1e-300,
+                "{p:?} {steps:?} n={n} c0={c0}: U {total} vs explicit {u}"
+            );
         }
         _ => {
             // explicit holds overflow: the O(1) total must be that large too (ln U > 660)
-            prop_assert!(total_ln > 660.0, "{p:?} {steps:?} n={n}: U = e^{total_ln} where explicit holds overflow");
+            prop_assert!(
+                total_ln > 660.0,
+                "{p:?} {steps:?} n={n}: U = e^{total_ln} where explicit holds overflow"
+            );
         }
     }
     Ok(())
@@ -631,14 +808,28 @@ fn hundred_thousand_cycles() {
     let steps = [(0.3, 0.002), (0.05, 0.0015), (0.0, 0.0013)];
     for p in [
         MaParams::new(1.4, 0.3).unwrap(),
-        MaParams::with_recovery(0.8, Recovery::Perfusion { rest_per_min: 0.37, limit_fmvc: 0.085 }).unwrap(),
+        MaParams::with_recovery(
+            0.8,
+            Recovery::Perfusion {
+                rest_per_min: 0.37,
+                limit_fmvc: 0.085,
+            },
+        )
+        .unwrap(),
         MaParams::new(0.05, 0.0).unwrap(),
     ] {
         let out = repeated_cycles(&p, &held(&steps), 1.0, 100_000);
         let (u, c) = explicit_cycles(&p, &steps, 1.0, 100_000).unwrap();
         let total = out.u_min.u * out.u_min.ln_scale.exp();
-        assert!((total - u).abs() <= CYCLES_REL_TOL * u, "{p:?}: {total} vs {u}");
-        assert!((out.capacity_end - c).abs() <= 1e-9, "{p:?}: {} vs {c}", out.capacity_end);
+        assert!(
+            (total - u).abs() <= CYCLES_REL_TOL * u,
+            "{p:?}: {total} vs {u}"
+        );
+        assert!(
+            (out.capacity_end - c).abs() <= 1e-9,
+            "{p:?}: {} vs {c}",
+            out.capacity_end
+        );
     }
 }
 
@@ -666,7 +857,10 @@ fn paper_model_long_shift_in_scaled_form() {
         let expected = ((2.0 * l).exp_m1() / (2.0 * k)).ln() - 2.0 * f64::ln(c0) + ln_ratio;
         let out = repeated_cycles(&p, &held(&steps), c0, n);
         let got = out.u_min.u.ln() + out.u_min.ln_scale;
-        assert!((got - expected).abs() <= 1e-10 * expected.abs().max(1.0), "{steps:?} n={n}: ln U {got} vs {expected}");
+        assert!(
+            (got - expected).abs() <= 1e-10 * expected.abs().max(1.0),
+            "{steps:?} n={n}: ln U {got} vs {expected}"
+        );
         let ln_c = f64::ln(c0) - nf * l;
         if ln_c > -700.0 {
             assert!(close(out.capacity_end, ln_c.exp(), 1e-10));
@@ -681,12 +875,28 @@ fn paper_model_long_shift_in_scaled_form() {
 /// alone gives U = (e^{1200} − 1)/40, ln U = 1200 − ln 40.
 #[test]
 fn mixed_cycle_overflow_is_scaled_not_saturated() {
-    let p = MaParams::with_recovery(20.0, Recovery::Perfusion { rest_per_min: 0.37, limit_fmvc: 0.085 }).unwrap();
-    let steps = [HeldStep { f: 1.0, t_min: 30.0 }, HeldStep { f: 0.0, t_min: 1.0 }];
+    let p = MaParams::with_recovery(
+        20.0,
+        Recovery::Perfusion {
+            rest_per_min: 0.37,
+            limit_fmvc: 0.085,
+        },
+    )
+    .unwrap();
+    let steps = [
+        HeldStep {
+            f: 1.0,
+            t_min: 30.0,
+        },
+        HeldStep { f: 0.0, t_min: 1.0 },
+    ];
     let out = repeated_cycles(&p, &steps, 1.0, 1);
     let got = out.u_min.u.ln() + out.u_min.ln_scale;
     let expected = 1200.0 - 40f64.ln();
-    assert!((got - expected).abs() < 1e-9 * expected, "ln U = {got}, expected {expected}");
+    assert!(
+        (got - expected).abs() < 1e-9 * expected,
+        "ln U = {got}, expected {expected}"
+    );
 }
 
 /// First and second derivatives of the O(1) total with respect to one step's load, against
@@ -696,15 +906,36 @@ fn cycle_derivatives_match_finite_differences_of_explicit_holds() {
     let params = [
         MaParams::new(1.0, 0.0).unwrap(),
         MaParams::new(1.4, 0.3).unwrap(),
-        MaParams::with_recovery(1.4, Recovery::Perfusion { rest_per_min: 0.37, limit_fmvc: 0.085 }).unwrap(),
+        MaParams::with_recovery(
+            1.4,
+            Recovery::Perfusion {
+                rest_per_min: 0.37,
+                limit_fmvc: 0.085,
+            },
+        )
+        .unwrap(),
     ];
     for p in params {
         for f in [0.03, 0.19, 0.35] {
-            let explicit = |x: f64| explicit_cycles(&p, &[(0.2, 0.05), (x, 0.04), (0.0, 0.1)], 0.9, 300).unwrap().0;
-            let c = Dual2 { v: 0.0, d: 0.0, dd: 0.0 };
+            let explicit = |x: f64| {
+                explicit_cycles(&p, &[(0.2, 0.05), (x, 0.04), (0.0, 0.1)], 0.9, 300)
+                    .unwrap()
+                    .0
+            };
+            let c = Dual2 {
+                v: 0.0,
+                d: 0.0,
+                dd: 0.0,
+            };
             let steps = [
-                HeldStep { f: Dual2 { v: 0.2, ..c }, t_min: 0.05 },
-                HeldStep { f: Dual2::variable(f), t_min: 0.04 },
+                HeldStep {
+                    f: Dual2 { v: 0.2, ..c },
+                    t_min: 0.05,
+                },
+                HeldStep {
+                    f: Dual2::variable(f),
+                    t_min: 0.04,
+                },
                 HeldStep { f: c, t_min: 0.1 },
             ];
             let d = repeated_cycles(&p, &steps, 0.9, 300).u_min.u;
@@ -712,9 +943,21 @@ fn cycle_derivatives_match_finite_differences_of_explicit_holds() {
             let (up, u0, um) = (explicit(f + h), explicit(f), explicit(f - h));
             let fd1 = (up - um) / (2.0 * h);
             let fd2 = (up - 2.0 * u0 + um) / (h * h);
-            assert!((d.v - u0).abs() <= CYCLES_REL_TOL * u0, "{p:?} f={f}: {} vs {u0}", d.v);
-            assert!((d.d - fd1).abs() <= 1e-4 * fd1.abs(), "{p:?} f={f}: dU/df {} vs {fd1}", d.d);
-            assert!((d.dd - fd2).abs() <= 2e-3 * fd2.abs().max(1.0), "{p:?} f={f}: d²U/df² {} vs {fd2}", d.dd);
+            assert!(
+                (d.v - u0).abs() <= CYCLES_REL_TOL * u0,
+                "{p:?} f={f}: {} vs {u0}",
+                d.v
+            );
+            assert!(
+                (d.d - fd1).abs() <= 1e-4 * fd1.abs(),
+                "{p:?} f={f}: dU/df {} vs {fd1}",
+                d.d
+            );
+            assert!(
+                (d.dd - fd2).abs() <= 2e-3 * fd2.abs().max(1.0),
+                "{p:?} f={f}: d²U/df² {} vs {fd2}",
+                d.dd
+            );
         }
     }
 }
@@ -727,9 +970,20 @@ fn cycle_derivatives_match_finite_differences_of_explicit_holds() {
 #[test]
 fn slow_transient_cycles_match_explicit_holds() {
     let cases = [
-        (MaParams::new(3.0, 0.075).unwrap(), vec![(0.75, 0.0068)], 270u64),
         (
-            MaParams::with_recovery(0.35, Recovery::Perfusion { rest_per_min: 0.85, limit_fmvc: 0.085 }).unwrap(),
+            MaParams::new(3.0, 0.075).unwrap(),
+            vec![(0.75, 0.0068)],
+            270u64,
+        ),
+        (
+            MaParams::with_recovery(
+                0.35,
+                Recovery::Perfusion {
+                    rest_per_min: 0.85,
+                    limit_fmvc: 0.085,
+                },
+            )
+            .unwrap(),
             vec![(0.0849, 0.025)],
             6643,
         ),
@@ -739,7 +993,11 @@ fn slow_transient_cycles_match_explicit_holds() {
         let out = repeated_cycles(&p, &held(&steps), 1.0, n);
         let (u, _) = explicit_cycles(&p, &steps, 1.0, n).unwrap();
         if (out.u_min.u - u).abs() > CYCLES_REL_TOL * u {
-            failures.push(format!("{p:?} {steps:?} n={n}: O(1) U {} vs explicit {u} (relative error {:.1e})", out.u_min.u, (out.u_min.u - u).abs() / u));
+            failures.push(format!(
+                "{p:?} {steps:?} n={n}: O(1) U {} vs explicit {u} (relative error {:.1e})",
+                out.u_min.u,
+                (out.u_min.u - u).abs() / u
+            ));
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
@@ -755,7 +1013,14 @@ fn tiny_recovery_rate_long_hold() {
     let cases = [
         (MaParams::new(1.0, 1e-30).unwrap(), 1.0, 40.0),
         (
-            MaParams::with_recovery(1.0, Recovery::Perfusion { rest_per_min: 0.37, limit_fmvc: 0.085 }).unwrap(),
+            MaParams::with_recovery(
+                1.0,
+                Recovery::Perfusion {
+                    rest_per_min: 0.37,
+                    limit_fmvc: 0.085,
+                },
+            )
+            .unwrap(),
             0.085 * (1.0 - 1e-12),
             400.0,
         ),
@@ -766,9 +1031,16 @@ fn tiny_recovery_rate_long_hold() {
         p.hold(&mut s, f, t_min * 60.0);
         let reference = integrate(p.k_per_min, rate(&p.recovery, f), f, 1.0, t_min);
         let paper = (2.0 * p.k_per_min * f * t_min).exp_m1() / (2.0 * p.k_per_min);
-        assert!(close(reference.du_min, paper, 1e-6), "the integration itself: {} vs {paper}", reference.du_min);
+        assert!(
+            close(reference.du_min, paper, 1e-6),
+            "the integration itself: {} vs {paper}",
+            reference.du_min
+        );
         if !close(s.fatigue_u_min, reference.du_min, 1e-8) {
-            failures.push(format!("{p:?} f={f} t={t_min} min: U {:e} vs integrated {:e}", s.fatigue_u_min, reference.du_min));
+            failures.push(format!(
+                "{p:?} f={f} t={t_min} min: U {:e} vs integrated {:e}",
+                s.fatigue_u_min, reference.du_min
+            ));
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");

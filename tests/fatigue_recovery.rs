@@ -12,13 +12,15 @@
 //!   that point, rounded up to the next 5 %, plus 5 percentage points), stated per case.
 
 use posture_opt::body::Sex;
-use posture_opt::fatigue::fit::{predict, Measured, Row, MAX_ENDURANCE_S};
+use posture_opt::fatigue::fit::{MAX_ENDURANCE_S, Measured, Row, predict};
 use posture_opt::fatigue::params::{Bound, ParameterSet, ParameterSets};
 use posture_opt::fatigue::{MaParams, MaState, Recovery};
 use serde_json::Value;
 use std::collections::HashMap;
 
-const REGIONS: [&str; 9] = ["general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle"];
+const REGIONS: [&str; 9] = [
+    "general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle",
+];
 
 fn data_path(rel: &str) -> String {
     format!("{}/tests/data/fatigue/{rel}", env!("CARGO_MANIFEST_DIR"))
@@ -36,15 +38,30 @@ fn num(v: &Value) -> f64 {
 /// Rows of a literature CSV (lines starting with `#` are its citation and notes).
 fn literature(name: &str) -> Vec<HashMap<String, String>> {
     let text = std::fs::read_to_string(data_path(&format!("literature/{name}"))).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty());
-    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
+    let header: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
     lines
-        .map(|l| header.iter().cloned().zip(l.split(',').map(str::to_string)).collect())
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(str::to_string))
+                .collect()
+        })
         .collect()
 }
 
 fn field(row: &HashMap<String, String>, name: &str) -> f64 {
-    row[name].parse().unwrap_or_else(|_| panic!("{name}: {}", row[name]))
+    row[name]
+        .parse()
+        .unwrap_or_else(|_| panic!("{name}: {}", row[name]))
 }
 
 fn default_set() -> ParameterSet {
@@ -84,7 +101,11 @@ fn intermittent_s(p: &MaParams, f: f64, on_s: f64, off_s: f64) -> f64 {
 /// `R(f)` of the default set, by hand: 0.37 · x²(3 − 2x), x = 1 − f/0.085 below 0.085.
 fn r_default(f: f64) -> f64 {
     let x = 1.0 - f / 0.085;
-    if x > 0.0 { 0.37 * x * x * (3.0 - 2.0 * x) } else { 0.0 }
+    if x > 0.0 {
+        0.37 * x * x * (3.0 - 2.0 * x)
+    } else {
+        0.0
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -96,16 +117,26 @@ fn shipped_default_set_is_the_one_of_the_reference_values() {
     let set = default_set();
     let r = reference();
     let pr = &r["params"];
-    assert_eq!(set.recovery.recovery(), Recovery::Perfusion {
-        rest_per_min: num(&pr["R_rest_per_min"]),
-        limit_fmvc: num(&pr["f_lim"]),
-    });
-    assert_eq!(set.recovery_at(Bound::High, Bound::High), Recovery::Perfusion {
-        rest_per_min: num(&pr["R_rest_high"]),
-        limit_fmvc: num(&pr["f_lim_high"]),
-    });
+    assert_eq!(
+        set.recovery.recovery(),
+        Recovery::Perfusion {
+            rest_per_min: num(&pr["R_rest_per_min"]),
+            limit_fmvc: num(&pr["f_lim"]),
+        }
+    );
+    assert_eq!(
+        set.recovery_at(Bound::High, Bound::High),
+        Recovery::Perfusion {
+            rest_per_min: num(&pr["R_rest_high"]),
+            limit_fmvc: num(&pr["f_lim_high"]),
+        }
+    );
     for region in REGIONS {
-        assert_eq!(set.regions[region].k, num(&pr["k_per_min"][region]), "{region}");
+        assert_eq!(
+            set.regions[region].k,
+            num(&pr["k_per_min"][region]),
+            "{region}"
+        );
         for sex in [Sex::Female, Sex::Male] {
             let k = if region == "elbow" {
                 num(&pr["k_elbow_by_sex"][if sex == Sex::Female { "female" } else { "male" }])
@@ -114,7 +145,11 @@ fn shipped_default_set_is_the_one_of_the_reference_values() {
             };
             assert_eq!(set.k(region, sex, Bound::Value), k, "{region}");
             if region != "elbow" {
-                assert_eq!(set.k(region, sex, Bound::Low), num(&pr["k_low_per_min"][region]), "{region}");
+                assert_eq!(
+                    set.k(region, sex, Bound::Low),
+                    num(&pr["k_low_per_min"][region]),
+                    "{region}"
+                );
             }
         }
     }
@@ -131,23 +166,50 @@ fn shipped_default_set_is_the_one_of_the_reference_values() {
 fn a1_a3_closed_forms() {
     let p = MaParams::with_recovery(1.0, default_set().recovery.recovery()).unwrap();
     let hold = |c0: f64, f: f64, t_min: f64| {
-        let mut s = MaState { capacity: c0, fatigue_u_min: 0.0 };
+        let mut s = MaState {
+            capacity: c0,
+            fatigue_u_min: 0.0,
+        };
         assert!(p.hold(&mut s, f, t_min * 60.0));
         s
     };
-    assert!(close(hold(0.8, 0.3, 2.0).capacity, 0.8 * (-0.6f64).exp(), 1e-14));
-    assert!(close(hold(0.8, 0.3, 2.0).capacity, 0.439049308875221, 1e-14));
-    assert!(close(hold(0.5, 0.0, 2.0).capacity, 1.0 - 0.5 * (-0.74f64).exp(), 1e-14));
+    assert!(close(
+        hold(0.8, 0.3, 2.0).capacity,
+        0.8 * (-0.6f64).exp(),
+        1e-14
+    ));
+    assert!(close(
+        hold(0.8, 0.3, 2.0).capacity,
+        0.439049308875221,
+        1e-14
+    ));
+    assert!(close(
+        hold(0.5, 0.0, 2.0).capacity,
+        1.0 - 0.5 * (-0.74f64).exp(),
+        1e-14
+    ));
     let r = 0.37 * 1813.0 / 4913.0;
     assert!(close(p.r_at(0.05), r, 1e-14));
     let lambda = 0.05 + r;
     let c_inf = r / lambda;
     let s = hold(0.9, 0.05, 30.0);
-    assert!(close(s.capacity, c_inf + (0.9 - c_inf) * (-lambda * 30.0).exp(), 1e-13));
+    assert!(close(
+        s.capacity,
+        c_inf + (0.9 - c_inf) * (-lambda * 30.0).exp(),
+        1e-13
+    ));
     // A8: U of the same step against the integration
     let reference = reference();
-    assert!(close(s.capacity, num(&reference["a3_a8_low_load"]["capacity"]), 1e-12));
-    assert!(close(s.fatigue_u_min, num(&reference["a3_a8_low_load"]["u_min"]), 1e-9));
+    assert!(close(
+        s.capacity,
+        num(&reference["a3_a8_low_load"]["capacity"]),
+        1e-12
+    ));
+    assert!(close(
+        s.fatigue_u_min,
+        num(&reference["a3_a8_low_load"]["u_min"]),
+        1e-9
+    ));
 }
 
 /// A4: R(f) of the default set and its smoothness: R(0) = R_rest, 0 from the limit on, and
@@ -156,7 +218,10 @@ fn a1_a3_closed_forms() {
 fn a4_recovery_rate_of_the_load() {
     let p = params("shoulder");
     for f in [0.0, 0.02, 0.05, 0.08, 0.0849, 0.085, 0.1, 0.2, 1.0] {
-        assert!(close(p.r_at(f), r_default(f), 1e-14) || (p.r_at(f) == 0.0 && r_default(f) == 0.0), "f={f}");
+        assert!(
+            close(p.r_at(f), r_default(f), 1e-14) || (p.r_at(f) == 0.0 && r_default(f) == 0.0),
+            "f={f}"
+        );
     }
     assert_eq!(p.r_at(0.0), 0.37);
     assert!(close(p.r_at(0.02), 0.318186444127824, 1e-13));
@@ -166,7 +231,10 @@ fn a4_recovery_rate_of_the_load() {
     }
     let h = 1e-7;
     assert!(((p.r_at(h) - p.r_at(0.0)) / h).abs() < 1e-4, "slope at 0");
-    assert!(((p.r_at(0.085) - p.r_at(0.085 - h)) / h).abs() < 1e-4, "slope at the limit");
+    assert!(
+        ((p.r_at(0.085) - p.r_at(0.085 - h)) / h).abs() < 1e-4,
+        "slope at the limit"
+    );
     // decreasing in between
     let mut last = f64::INFINITY;
     for i in 0..=85 {
@@ -205,10 +273,20 @@ fn a6_a7_b6_paper_set() {
         let p = set.params(region, Sex::Female).unwrap();
         assert_eq!(p, MaParams::default(), "{region}");
         assert_eq!(p.sustainable_load(), 0.0);
-        for (key, f) in [("0.05", 0.05), ("0.20", 0.2), ("0.40", 0.4), ("0.50", 0.5), ("0.60", 0.6), ("0.80", 0.8)] {
+        for (key, f) in [
+            ("0.05", 0.05),
+            ("0.20", 0.2),
+            ("0.40", 0.4),
+            ("0.50", 0.5),
+            ("0.60", 0.6),
+            ("0.80", 0.8),
+        ] {
             let met = p.met_min(f).unwrap();
             assert!(close(met, -f64::ln(f) / f, 1e-13));
-            assert!(close(met, num(&reference["ma2009_met_min"][key]), 1e-9), "f={f}");
+            assert!(
+                close(met, num(&reference["ma2009_met_min"][key]), 1e-9),
+                "f={f}"
+            );
         }
         // 50 %MVC: 2 ln 2 min = 83.18 s; U there (0.5⁻² − 1)/2 = 1.5 min
         let mut s = MaState::FRESH;
@@ -232,7 +310,11 @@ fn a8_fatigue_index_without_recovery() {
     p1.hold(&mut s, 0.3, 120.0);
     assert!(close(s.fatigue_u_min, (1.2f64).exp_m1() / 2.0, 1e-14));
     assert!(close(s.fatigue_u_min, 1.16005846136827, 1e-13));
-    assert!(close(s.fatigue_u_min, num(&reference()["a8_no_recovery"]["u_min"]), 1e-10));
+    assert!(close(
+        s.fatigue_u_min,
+        num(&reference()["a8_no_recovery"]["u_min"]),
+        1e-10
+    ));
 }
 
 /// A9 and B2a: the sustainable load f* of every region (c∞(f*) = f*) equals the reference, and
@@ -246,7 +328,10 @@ fn a9_b2a_sustainable_load() {
     for region in REGIONS {
         let p = params(region);
         let fs = p.sustainable_load();
-        assert!(close(fs, num(&reference["fstar"][region]), 1e-9), "{region}: {fs}");
+        assert!(
+            close(fs, num(&reference["fstar"][region]), 1e-9),
+            "{region}: {fs}"
+        );
         // by hand: R(f*)(1 − f*) = k f*²
         assert!((r_default(fs) * (1.0 - fs) - p.k_per_min * fs * fs).abs() < 1e-12);
         for sex in [Sex::Female, Sex::Male] {
@@ -277,7 +362,12 @@ fn a10_sustained_endurance_equals_integration() {
 fn a11_b4a_gonzales_scheuermann_intermittent_grip() {
     let data = literature("gonzales_scheuermann_2007_intermittent_grip.csv");
     let pooled = data.iter().find(|r| r["group"] == "pooled").unwrap();
-    let (f, on, off, et) = (field(pooled, "f"), field(pooled, "on_s"), field(pooled, "off_s"), field(pooled, "et_s"));
+    let (f, on, off, et) = (
+        field(pooled, "f"),
+        field(pooled, "on_s"),
+        field(pooled, "off_s"),
+        field(pooled, "et_s"),
+    );
     assert_eq!((f, on, off), (0.5, 5.0, 5.0));
     let p = params("grip");
     let t = intermittent_s(&p, f, on, off);
@@ -288,12 +378,18 @@ fn a11_b4a_gonzales_scheuermann_intermittent_grip() {
     assert!(t > 730.0 && t < 735.0);
     // sensitivity to R_rest: ×0.95 and ×1.02 as integrated
     for m in ["0.95", "1.02"] {
-        let q = MaParams::with_recovery(p.k_per_min, Recovery::Perfusion {
-            rest_per_min: 0.37 * m.parse::<f64>().unwrap(),
-            limit_fmvc: 0.085,
-        })
+        let q = MaParams::with_recovery(
+            p.k_per_min,
+            Recovery::Perfusion {
+                rest_per_min: 0.37 * m.parse::<f64>().unwrap(),
+                limit_fmvc: 0.085,
+            },
+        )
         .unwrap();
-        assert!(close(intermittent_s(&q, f, on, off), num(&r[m]), 1e-6), "×{m}");
+        assert!(
+            close(intermittent_s(&q, f, on, off), num(&r[m]), 1e-6),
+            "×{m}"
+        );
     }
 }
 
@@ -301,10 +397,13 @@ fn a11_b4a_gonzales_scheuermann_intermittent_grip() {
 /// exhausted (the simulation ends at its 24-h cap), as the integration finds.
 #[test]
 fn a12_sustainable_intermittent_task_terminates() {
-    let p = MaParams::with_recovery(params("grip").k_per_min, Recovery::Perfusion {
-        rest_per_min: 0.37 * 1.05,
-        limit_fmvc: 0.085,
-    })
+    let p = MaParams::with_recovery(
+        params("grip").k_per_min,
+        Recovery::Perfusion {
+            rest_per_min: 0.37 * 1.05,
+            limit_fmvc: 0.085,
+        },
+    )
     .unwrap();
     let start = std::time::Instant::now();
     assert_eq!(intermittent_s(&p, 0.5, 5.0, 5.0), MAX_ENDURANCE_S);
@@ -317,7 +416,11 @@ fn a12_sustainable_intermittent_task_terminates() {
     let a_off = (-r * 5.0 / 60.0).exp();
     let (alpha, beta) = (a_on * a_off, 1.0 - a_off);
     let c_start = beta / (1.0 - alpha);
-    assert!(c_start * a_on > 0.5, "lowest capacity of the periodic state {} > load", c_start * a_on);
+    assert!(
+        c_start * a_on > 0.5,
+        "lowest capacity of the periodic state {} > load",
+        c_start * a_on
+    );
 }
 
 /// A13: the legacy constant recovery (k = 1, R = 0.3/min) lets loads up to
@@ -329,7 +432,11 @@ fn a13_legacy_constant_recovery_vs_default() {
     let by_hand = (-0.3 + (0.09f64 + 1.2).sqrt()) / 2.0;
     assert!((by_hand - 0.417891).abs() < 1e-6);
     assert!(close(legacy.sustainable_load(), by_hand, 1e-10));
-    assert!(close(legacy.sustainable_load(), num(&reference()["legacy_const_R0_3_k1"]["fstar"]), 1e-9));
+    assert!(close(
+        legacy.sustainable_load(),
+        num(&reference()["legacy_const_R0_3_k1"]["fstar"]),
+        1e-9
+    ));
     assert_eq!(legacy.time_to_exhaustion_s(1.0, 0.4), None);
     let t = params("shoulder").time_to_exhaustion_s(1.0, 0.4).unwrap();
     assert!((t - 98.41).abs() < 0.01, "{t}");
@@ -343,18 +450,35 @@ fn a13_legacy_constant_recovery_vs_default() {
 #[test]
 fn a14_b4_bystrom_micropauses() {
     let data = literature("bystrom_1991_micropauses.csv");
-    let cont = data.iter().find(|r| r["condition"] == "continuous").unwrap();
-    let inter = data.iter().find(|r| r["condition"] == "intermittent").unwrap();
+    let cont = data
+        .iter()
+        .find(|r| r["condition"] == "continuous")
+        .unwrap();
+    let inter = data
+        .iter()
+        .find(|r| r["condition"] == "intermittent")
+        .unwrap();
     let (f, t_cont) = (field(cont, "f"), field(cont, "tlim_min"));
     let k = -f64::ln(f) / (f * t_cont);
     assert!((k - 0.342294904).abs() < 1e-9);
     assert!(close(k, num(&reference()["bystrom"]["k_per_min"]), 1e-9));
     let p = MaParams::with_recovery(k, default_set().recovery.recovery()).unwrap();
     assert!(close(p.met_min(f).unwrap(), t_cont, 1e-12));
-    let t = intermittent_s(&p, field(inter, "f"), field(inter, "on_s"), field(inter, "off_s")) / 60.0;
-    assert!(close(t, num(&reference()["bystrom"]["intermittent_min"]), 1e-6), "{t}");
+    let t = intermittent_s(
+        &p,
+        field(inter, "f"),
+        field(inter, "on_s"),
+        field(inter, "off_s"),
+    ) / 60.0;
+    assert!(
+        close(t, num(&reference()["bystrom"]["intermittent_min"]), 1e-6),
+        "{t}"
+    );
     let measured = field(inter, "tlim_min");
-    assert!(rel_err(t, measured).abs() <= 0.15, "{t} min vs {measured} min");
+    assert!(
+        rel_err(t, measured).abs() <= 0.15,
+        "{t} min vs {measured} min"
+    );
     assert!(t / t_cont > 1.2, "ratio {}", t / t_cont);
 }
 
@@ -364,13 +488,22 @@ fn a14_b4_bystrom_micropauses() {
 #[test]
 fn b4d_intermittent_beats_sustained_at_equal_mean_load() {
     let limits = literature("bjorksten_jonsson_1977_limits.csv");
-    let get = |c: &str| field(limits.iter().find(|r| r["condition"] == c).unwrap(), "mean_force_frac");
+    let get = |c: &str| {
+        field(
+            limits.iter().find(|r| r["condition"] == c).unwrap(),
+            "mean_force_frac",
+        )
+    };
     assert!(get("intermittent") > get("sustained"));
     let p = params("grip");
     let inter = intermittent_s(&p, 0.5, 5.0, 5.0);
     let sustained = p.time_to_exhaustion_s(1.0, 0.25).unwrap();
     // by hand, R(0.25) = 0: MET = ln 4/(0.25 k)
-    assert!(close(sustained, 60.0 * 4f64.ln() / (0.25 * p.k_per_min), 1e-12));
+    assert!(close(
+        sustained,
+        60.0 * 4f64.ln() / (0.25 * p.k_per_min),
+        1e-12
+    ));
     assert!(inter > sustained, "{inter} s vs {sustained} s");
 }
 
@@ -400,10 +533,18 @@ fn b1_endurance_within_frey_law_avin_bands() {
     assert_eq!(curves["ankle"], (34.71, -2.06));
     let mut failures = Vec::new();
     for band in &bands {
-        let (curve, f, tol) = (band["region"].as_str(), field(band, "f"), field(band, "tolerance"));
+        let (curve, f, tol) = (
+            band["region"].as_str(),
+            field(band, "f"),
+            field(band, "tolerance"),
+        );
         let (b0, b1) = curves[curve];
         let data = b0 * f.powf(b1);
-        let regions: &[&str] = if curve == "general" { &["general", "neck", "hip"] } else { &[curve] };
+        let regions: &[&str] = if curve == "general" {
+            &["general", "neck", "hip"]
+        } else {
+            &[curve]
+        };
         for region in regions {
             let model = params(region).time_to_exhaustion_s(1.0, f).unwrap();
             let e = rel_err(model, data);
@@ -423,14 +564,36 @@ fn b1_endurance_within_frey_law_avin_bands() {
 fn b1_ankle_longest_shoulder_shortest() {
     let curves = power_curves();
     for f in [0.2f64, 0.3, 0.4, 0.5, 0.6] {
-        let by_curve: Vec<(&String, f64)> = curves.iter().map(|(g, (b0, b1))| (g, b0 * f.powf(*b1))).collect();
-        let longest = by_curve.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
-        let shortest = by_curve.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
-        assert_eq!((longest.as_str(), shortest.as_str()), ("ankle", "shoulder"), "the published curves at {f}");
-        let model: Vec<(&str, f64)> = REGIONS.iter().map(|&g| (g, params(g).time_to_exhaustion_s(1.0, f).unwrap())).collect();
+        let by_curve: Vec<(&String, f64)> = curves
+            .iter()
+            .map(|(g, (b0, b1))| (g, b0 * f.powf(*b1)))
+            .collect();
+        let longest = by_curve
+            .iter()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap()
+            .0;
+        let shortest = by_curve
+            .iter()
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap()
+            .0;
+        assert_eq!(
+            (longest.as_str(), shortest.as_str()),
+            ("ankle", "shoulder"),
+            "the published curves at {f}"
+        );
+        let model: Vec<(&str, f64)> = REGIONS
+            .iter()
+            .map(|&g| (g, params(g).time_to_exhaustion_s(1.0, f).unwrap()))
+            .collect();
         let longest = model.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
         let shortest = model.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
-        assert_eq!((longest, shortest), ("ankle", "shoulder"), "the model at {f}");
+        assert_eq!(
+            (longest, shortest),
+            ("ankle", "shoulder"),
+            "the model at {f}"
+        );
     }
 }
 
@@ -453,19 +616,41 @@ fn b2b_no_load_well_above_15pct_is_sustainable() {
             for kb in bounds {
                 for rb in bounds {
                     for lb in bounds {
-                        let p = MaParams::with_recovery(set.k(region, sex, kb), set.recovery_at(rb, lb)).unwrap();
+                        let p = MaParams::with_recovery(
+                            set.k(region, sex, kb),
+                            set.recovery_at(rb, lb),
+                        )
+                        .unwrap();
                         let fs = p.sustainable_load();
-                        assert!(fs < 0.16, "{region} {sex:?} {kb:?} {rb:?} {lb:?}: f* = {fs}");
+                        assert!(
+                            fs < 0.16,
+                            "{region} {sex:?} {kb:?} {rb:?} {lb:?}: f* = {fs}"
+                        );
                         assert!(p.time_to_exhaustion_s(1.0, 0.16).is_some());
                     }
                 }
             }
         }
-        let fav = MaParams::with_recovery(set.k(region, Sex::Male, Bound::Low), set.recovery_at(Bound::High, Bound::High)).unwrap();
+        let fav = MaParams::with_recovery(
+            set.k(region, Sex::Male, Bound::Low),
+            set.recovery_at(Bound::High, Bound::High),
+        )
+        .unwrap();
         if region != "elbow" {
             let met = fav.met_min(0.15).expect("15 %MVC exhausts");
-            assert!(close(met, num(&reference["favourable_met_15pct_min"][region]), 1e-9), "{region}: {met}");
-            assert!(close(fav.sustainable_load(), num(&reference["favourable_fstar"][region]), 1e-9));
+            assert!(
+                close(
+                    met,
+                    num(&reference["favourable_met_15pct_min"][region]),
+                    1e-9
+                ),
+                "{region}: {met}"
+            );
+            assert!(close(
+                fav.sustainable_load(),
+                num(&reference["favourable_fstar"][region]),
+                1e-9
+            ));
         }
         assert!(fav.sustainable_load() <= 0.139, "{region}");
     }
@@ -476,10 +661,17 @@ fn b2b_no_load_well_above_15pct_is_sustainable() {
 #[test]
 fn b2c_bjorksten_jonsson_sustained_limit() {
     let limits = literature("bjorksten_jonsson_1977_limits.csv");
-    let row = limits.iter().find(|r| r["condition"] == "sustained").unwrap();
+    let row = limits
+        .iter()
+        .find(|r| r["condition"] == "sustained")
+        .unwrap();
     let (f, minutes) = (field(row, "mean_force_frac"), field(row, "duration_min"));
     let met = params("general").met_min(f).unwrap();
-    assert!(close(met, num(&reference()["bjorksten_general_7_9pct_min"]), 1e-9));
+    assert!(close(
+        met,
+        num(&reference()["bjorksten_general_7_9pct_min"]),
+        1e-9
+    ));
     assert!((45.0..=90.0).contains(&met), "{met} min vs {minutes} min");
 }
 
@@ -492,10 +684,20 @@ fn b2d_mathiassen_ahsberg_shoulder() {
     for row in literature("mathiassen_ahsberg_1999_shoulder.csv") {
         let f = field(&row, "f");
         let published = 40.609 * (-0.097 * 100.0 * f).exp();
-        assert!((published - field(&row, "met_min")).abs() < 0.01, "the regression at {f}");
+        assert!(
+            (published - field(&row, "met_min")).abs() < 0.01,
+            "the regression at {f}"
+        );
         let met = p.met_min(f).unwrap();
-        assert!(close(met, num(&reference["mathiassen_shoulder_min"][&format!("{f:.2}")]), 1e-9));
-        assert!(rel_err(met, published).abs() <= 0.15, "{f}: {met} vs {published}");
+        assert!(close(
+            met,
+            num(&reference["mathiassen_shoulder_min"][&format!("{f:.2}")]),
+            1e-9
+        ));
+        assert!(
+            rel_err(met, published).abs() <= 0.15,
+            "{f}: {met} vs {published}"
+        );
     }
 }
 
@@ -506,13 +708,25 @@ fn b2d_mathiassen_ahsberg_shoulder() {
 fn b2e_sjogaard_low_level_hour() {
     let data = literature("sjogaard_1986_low_level.csv");
     let row = &data[0];
-    let (f, minutes, after) = (field(row, "f"), field(row, "duration_min"), field(row, "capacity_after"));
+    let (f, minutes, after) = (
+        field(row, "f"),
+        field(row, "duration_min"),
+        field(row, "capacity_after"),
+    );
     let p = params("knee");
     assert_eq!(p.time_to_exhaustion_s(1.0, f), None);
     let mut s = MaState::FRESH;
     p.hold(&mut s, f, minutes * 60.0);
-    assert!(close(s.capacity, num(&reference()["sjogaard_knee_5pct_60min_capacity"]), 1e-9));
-    assert!((0.65..=0.95).contains(&s.capacity), "{} vs {after}", s.capacity);
+    assert!(close(
+        s.capacity,
+        num(&reference()["sjogaard_knee_5pct_60min_capacity"]),
+        1e-9
+    ));
+    assert!(
+        (0.65..=0.95).contains(&s.capacity),
+        "{} vs {after}",
+        s.capacity
+    );
     assert!(s.capacity < after);
 }
 
@@ -528,7 +742,11 @@ fn b2f_below_the_sustainable_load() {
     assert!(p.hold(&mut s, 0.07, 8.0 * 3600.0));
     assert!(close(s.capacity, c_inf, 1e-9));
     assert!((s.capacity - 0.2378).abs() < 1e-4);
-    assert!(close(s.capacity, num(&reference()["shoulder_7pct_480min_capacity"]), 1e-9));
+    assert!(close(
+        s.capacity,
+        num(&reference()["shoulder_7pct_480min_capacity"]),
+        1e-9
+    ));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -540,11 +758,25 @@ fn b2f_below_the_sustainable_load() {
 fn b3a_recovery_at_rest() {
     let reference = reference();
     let p = params("elbow");
-    for (key, t_min) in [("0.25", 0.25), ("0.5", 0.5), ("1", 1.0), ("2", 2.0), ("5", 5.0), ("10", 10.0)] {
-        let mut s = MaState { capacity: 0.5, fatigue_u_min: 1.0 };
+    for (key, t_min) in [
+        ("0.25", 0.25),
+        ("0.5", 0.5),
+        ("1", 1.0),
+        ("2", 2.0),
+        ("5", 5.0),
+        ("10", 10.0),
+    ] {
+        let mut s = MaState {
+            capacity: 0.5,
+            fatigue_u_min: 1.0,
+        };
         p.hold(&mut s, 0.0, t_min * 60.0);
         assert!(close(s.capacity, 1.0 - 0.5 * (-0.37 * t_min).exp(), 1e-14));
-        assert!(close(s.capacity, num(&reference["rest_after_half_capacity"][key]), 1e-12));
+        assert!(close(
+            s.capacity,
+            num(&reference["rest_after_half_capacity"][key]),
+            1e-12
+        ));
         assert_eq!(s.fatigue_u_min, 1.0);
     }
 }
@@ -557,22 +789,44 @@ fn b3a_recovery_at_rest() {
 fn b3_sahlin_ren_endurance_recovery() {
     let data = literature("sahlin_ren_1989_recovery.csv");
     let half = data.iter().find(|r| r["use"] == "fit").unwrap();
-    let (f, rest_half, ratio_half) = (field(half, "f"), field(half, "rest_min"), field(half, "value"));
+    let (f, rest_half, ratio_half) = (
+        field(half, "f"),
+        field(half, "rest_min"),
+        field(half, "value"),
+    );
     let p = params("knee");
     let first = p.time_to_exhaustion_s(1.0, f).unwrap();
     let reference = reference();
     let ratio = |rest_min: f64| {
-        let mut s = MaState { capacity: f, fatigue_u_min: 0.0 };
+        let mut s = MaState {
+            capacity: f,
+            fatigue_u_min: 0.0,
+        };
         p.hold(&mut s, 0.0, rest_min * 60.0);
-        (p.time_to_exhaustion_s(s.capacity, f).unwrap() / first, s.capacity)
+        (
+            p.time_to_exhaustion_s(s.capacity, f).unwrap() / first,
+            s.capacity,
+        )
     };
     let (r12, _) = ratio(rest_half);
-    assert!(close(r12, num(&reference["sahlin_knee_66pct"]["1.2"]["second_over_first"]), 1e-9));
+    assert!(close(
+        r12,
+        num(&reference["sahlin_knee_66pct"]["1.2"]["second_over_first"]),
+        1e-9
+    ));
     assert!((0.35..=0.60).contains(&r12), "{r12} vs {ratio_half}");
     for (key, rest) in [("2", 2.0), ("4", 4.0)] {
         let (r, c) = ratio(rest);
-        assert!(close(r, num(&reference["sahlin_knee_66pct"][key]["second_over_first"]), 1e-9));
-        assert!(close(c, num(&reference["sahlin_knee_66pct"][key]["capacity_after_rest"]), 1e-12));
+        assert!(close(
+            r,
+            num(&reference["sahlin_knee_66pct"][key]["second_over_first"]),
+            1e-9
+        ));
+        assert!(close(
+            c,
+            num(&reference["sahlin_knee_66pct"][key]["capacity_after_rest"]),
+            1e-12
+        ));
         assert!(r < 1.0, "{rest} min: {r}");
     }
     let (_, c2) = ratio(2.0);
@@ -587,15 +841,34 @@ fn b3_sahlin_ren_endurance_recovery() {
 fn b3e_stull_kearney_micro_pause() {
     let data = literature("stull_kearney_1978_endurance_recovery.csv");
     let row = data.iter().find(|r| field(r, "rest_s") == 5.0).unwrap();
-    let (f, first_s, ratio_data) = (field(row, "f"), field(row, "first_bout_s"), field(row, "second_over_first"));
+    let (f, first_s, ratio_data) = (
+        field(row, "f"),
+        field(row, "first_bout_s"),
+        field(row, "second_over_first"),
+    );
     let k = 2f64.ln() / (f * first_s / 60.0);
-    assert!(close(k, num(&reference()["stull_kearney"]["k_per_min"]), 1e-9));
+    assert!(close(
+        k,
+        num(&reference()["stull_kearney"]["k_per_min"]),
+        1e-9
+    ));
     let p = MaParams::with_recovery(k, default_set().recovery.recovery()).unwrap();
-    assert!(close(p.time_to_exhaustion_s(1.0, f).unwrap(), first_s, 1e-12));
-    let mut s = MaState { capacity: f, fatigue_u_min: 0.0 };
+    assert!(close(
+        p.time_to_exhaustion_s(1.0, f).unwrap(),
+        first_s,
+        1e-12
+    ));
+    let mut s = MaState {
+        capacity: f,
+        fatigue_u_min: 0.0,
+    };
     p.hold(&mut s, 0.0, field(row, "rest_s"));
     let ratio = p.time_to_exhaustion_s(s.capacity, f).unwrap() / first_s;
-    assert!(close(ratio, num(&reference()["stull_kearney"]["second_over_first_5s"]), 1e-9));
+    assert!(close(
+        ratio,
+        num(&reference()["stull_kearney"]["second_over_first_5s"]),
+        1e-9
+    ));
     assert!(ratio > 0.0 && ratio < ratio_data, "{ratio}");
 }
 
@@ -612,15 +885,28 @@ fn b5_sex_specific_elbow() {
     let set = default_set();
     let reference = reference();
     for row in data.iter().filter(|r| r["region"] == "elbow") {
-        let sex = if row["sex"] == "female" { Sex::Female } else { Sex::Male };
+        let sex = if row["sex"] == "female" {
+            Sex::Female
+        } else {
+            Sex::Male
+        };
         let p = set.params("elbow", sex).unwrap();
         let t = p.time_to_exhaustion_s(1.0, field(row, "f")).unwrap();
-        assert!(close(t, num(&reference["met_s_elbow_by_sex_50pct"][row["sex"].as_str()]), 1e-9));
+        assert!(close(
+            t,
+            num(&reference["met_s_elbow_by_sex_50pct"][row["sex"].as_str()]),
+            1e-9
+        ));
         let measured = field(row, "et_s");
-        assert!(rel_err(t, measured).abs() <= 0.10, "{}: {t} s vs {measured} s", row["sex"]);
+        assert!(
+            rel_err(t, measured).abs() <= 0.10,
+            "{}: {t} s vs {measured} s",
+            row["sex"]
+        );
     }
     for region in REGIONS {
-        let same = set.params(region, Sex::Female).unwrap() == set.params(region, Sex::Male).unwrap();
+        let same =
+            set.params(region, Sex::Female).unwrap() == set.params(region, Sex::Male).unwrap();
         assert_eq!(same, region != "elbow", "{region}");
     }
     let ankle = set.params("ankle", Sex::Female).unwrap();

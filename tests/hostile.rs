@@ -11,8 +11,8 @@
 mod common;
 use common::*;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 /// Time limit of a run that only reads and checks its inputs.
@@ -69,7 +69,8 @@ mod yamlish {
     }
 
     pub fn parse(text: &str) -> Y {
-        let v: serde_json::Value = serde_saphyr::from_str(text).expect("a shipped YAML file parses");
+        let v: serde_json::Value =
+            serde_saphyr::from_str(text).expect("a shipped YAML file parses");
         from_json(&v)
     }
 
@@ -93,11 +94,7 @@ mod yamlish {
         let plain = !k.is_empty()
             && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
             && !k.starts_with(|c: char| c.is_ascii_digit());
-        if plain {
-            k.to_string()
-        } else {
-            quote(k)
-        }
+        if plain { k.to_string() } else { quote(k) }
     }
 
     fn flow(y: &Y, o: &mut String) {
@@ -325,7 +322,10 @@ mod yamlish {
                 set(Y::Seq(vec![]), "wrong-type-list"),
                 set(Y::Null, "null"),
             ],
-            Y::Bool(b) => vec![set(Y::Bool(!b), "flipped"), set(Y::Str("maybe".into()), "wrong-type-string")],
+            Y::Bool(b) => vec![
+                set(Y::Bool(!b), "flipped"),
+                set(Y::Str("maybe".into()), "wrong-type-string"),
+            ],
             Y::Null => vec![set(Y::Num("1".into()), "number")],
             Y::Map(_) => vec![
                 set(Y::Num("5".into()), "wrong-type-number"),
@@ -355,8 +355,12 @@ mod yamlish {
         match op {
             Op::Set(v, _) => *get_mut(&mut y, p) = v.clone(),
             Op::Remove | Op::Duplicate => {
-                let Some(Seg::Key(k)) = p.last() else { panic!("not a key") };
-                let Y::Map(m) = get_mut(&mut y, &p[..p.len() - 1]) else { panic!("not a map") };
+                let Some(Seg::Key(k)) = p.last() else {
+                    panic!("not a key")
+                };
+                let Y::Map(m) = get_mut(&mut y, &p[..p.len() - 1]) else {
+                    panic!("not a map")
+                };
                 let i = m.iter().position(|(kk, _)| kk == k).unwrap();
                 if matches!(op, Op::Remove) {
                     m.remove(i);
@@ -448,22 +452,46 @@ fn yaml_mutants(label: &str, text: &str, per_node: usize) -> Vec<Mutant> {
         ("empty-file", Vec::new()),
         ("only-comment", b"# nothing\n".to_vec()),
         ("truncated-half", text.as_bytes()[..text.len() / 2].to_vec()),
-        ("binary-garbage", (0..4096u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect()),
+        (
+            "binary-garbage",
+            (0..4096u32)
+                .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+                .collect(),
+        ),
         ("non-utf8", [text.as_bytes(), b"\n# \xff\xfe\n"].concat()),
-        ("bom-crlf", [b"\xef\xbb\xbf".as_slice(), text.replace('\n', "\r\n").as_bytes()].concat()),
+        (
+            "bom-crlf",
+            [
+                b"\xef\xbb\xbf".as_slice(),
+                text.replace('\n', "\r\n").as_bytes(),
+            ]
+            .concat(),
+        ),
         ("tabs-indent", text.replace("  ", "\t").into_bytes()),
         ("json-instead", b"{\"name\": 1}".to_vec()),
-        ("deep-nesting", format!("name: {}{}\n", "[".repeat(100_000), "]".repeat(100_000)).into_bytes()),
+        (
+            "deep-nesting",
+            format!("name: {}{}\n", "[".repeat(100_000), "]".repeat(100_000)).into_bytes(),
+        ),
         ("alias-bomb", {
             let mut s = String::from("a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n");
             for i in 1..12 {
-                s.push_str(&format!("a{i}: &a{i} [{}]\n", vec![format!("*a{}", i - 1); 10].join(", ")));
+                s.push_str(&format!(
+                    "a{i}: &a{i} [{}]\n",
+                    vec![format!("*a{}", i - 1); 10].join(", ")
+                ));
             }
             s.push_str(text);
             s.into_bytes()
         }),
-        ("document-twice", format!("{text}\n---\n{text}").into_bytes()),
-        ("yaml-tags", text.replacen(": ", ": !!binary ", 1).into_bytes()),
+        (
+            "document-twice",
+            format!("{text}\n---\n{text}").into_bytes(),
+        ),
+        (
+            "yaml-tags",
+            text.replacen(": ", ": !!binary ", 1).into_bytes(),
+        ),
     ];
     for (l, b) in whole {
         out.push(Mutant {
@@ -547,17 +575,30 @@ fn judge(c: &Case, o: &Out) -> Result<Verdict, String> {
             }
             let e = &o.stderr;
             if !e.contains("error:") {
-                return Err(format!("exit 2 without an error message: {}", truncate(e, 600)));
+                return Err(format!(
+                    "exit 2 without an error message: {}",
+                    truncate(e, 600)
+                ));
             }
             if !e.contains(&c.file) {
-                return Err(format!("exit 2, but the message does not name the file '{}': {}", c.file, truncate(e, 600)));
+                return Err(format!(
+                    "exit 2, but the message does not name the file '{}': {}",
+                    c.file,
+                    truncate(e, 600)
+                ));
             }
             if !(e.contains("line") || c.fields.iter().any(|w| e.contains(w.as_str()))) {
-                return Err(format!("exit 2, but the message names no field, element or line: {}", truncate(e, 600)));
+                return Err(format!(
+                    "exit 2, but the message names no field, element or line: {}",
+                    truncate(e, 600)
+                ));
             }
             Ok(Verdict::Refused)
         }
-        1 => Err(format!("exit 1 (internal failure): {}", truncate(&o.stderr, 600))),
+        1 => Err(format!(
+            "exit 1 (internal failure): {}",
+            truncate(&o.stderr, 600)
+        )),
         c => Err(format!("exit {c}: {}", truncate(&o.stderr, 600))),
     }
 }
@@ -570,28 +611,33 @@ struct Outcome {
 
 /// Runs the cases in parallel (several processes at a time).
 fn run_cases(cases: Vec<Case>) -> Vec<Outcome> {
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).clamp(2, 8) * 2;
+    let threads = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .clamp(2, 8)
+        * 2;
     let next = AtomicUsize::new(0);
     let results = Mutex::new(Vec::with_capacity(cases.len()));
     std::thread::scope(|sc| {
         for _ in 0..threads {
-            sc.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::SeqCst);
-                let Some(c) = cases.get(i) else { break };
-                let mut r = Run::new(&c.args).cwd(&c.cwd).timeout(c.timeout);
-                if let Some(b) = &c.stdin {
-                    r = r.stdin(b.clone());
+            sc.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::SeqCst);
+                    let Some(c) = cases.get(i) else { break };
+                    let mut r = Run::new(&c.args).cwd(&c.cwd).timeout(c.timeout);
+                    if let Some(b) = &c.stdin {
+                        r = r.stdin(b.clone());
+                    }
+                    let o = r.go();
+                    let verdict = judge(c, &o);
+                    results.lock().unwrap().push((
+                        i,
+                        Outcome {
+                            id: c.id.clone(),
+                            verdict,
+                            elapsed: o.elapsed,
+                        },
+                    ));
                 }
-                let o = r.go();
-                let verdict = judge(c, &o);
-                results.lock().unwrap().push((
-                    i,
-                    Outcome {
-                        id: c.id.clone(),
-                        verdict,
-                        elapsed: o.elapsed,
-                    },
-                ));
             });
         }
     });
@@ -615,7 +661,9 @@ fn assert_outcomes(corpus: &str, outcomes: &[Outcome]) {
         if o.elapsed > slowest.0 {
             slowest = (o.elapsed, o.id.clone());
         }
-        let known = KNOWN_FAILURES.iter().position(|(pat, _)| o.id.contains(pat));
+        let known = KNOWN_FAILURES
+            .iter()
+            .position(|(pat, _)| o.id.contains(pat));
         match &o.verdict {
             Ok(v) => {
                 match v {
@@ -658,7 +706,12 @@ fn assert_outcomes(corpus: &str, outcomes: &[Outcome]) {
         unexpected.is_empty(),
         "{corpus}: {} cases broke the contract:\n{}",
         unexpected.len(),
-        unexpected.iter().take(60).cloned().collect::<Vec<_>>().join("\n")
+        unexpected
+            .iter()
+            .take(60)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
     );
     assert!(
         fixed.is_empty(),
@@ -670,16 +723,67 @@ fn assert_outcomes(corpus: &str, outcomes: &[Outcome]) {
 /// The task format's field names (for judging messages).
 fn task_field_words() -> Vec<String> {
     let mut w: Vec<String> = [
-        "name", "worker", "robot", "hand_frame", "left_hand_frame", "gravity_m_s2", "stance",
-        "workstation", "obstacles", "phases", "cycles", "rest_s", "replan", "fatigue",
-        "objective", "lifts", "target_m", "targets", "object", "load_kg", "hand_force_n",
-        "left_share", "duration_s", "sex", "stature_m", "mass_kg", "strength_percentile",
-        "every_cycles", "every_s", "capacity_tolerance", "parameters", "parameters_file",
-        "k_per_min", "recovery_per_min", "recovery", "overrides", "discomfort_weight",
-        "clearance_m", "balance_margin_m", "origin", "destination", "coupling", "width_m",
-        "forward_m", "toe_out_deg", "feet", "size_m", "position_m", "rpy_rad", "radius_m",
-        "height_m", "normal", "center_m", "grip_width_m", "right_m", "left_m", "hand",
-        "obstacle", "unknown field", "missing field", "duplicate",
+        "name",
+        "worker",
+        "robot",
+        "hand_frame",
+        "left_hand_frame",
+        "gravity_m_s2",
+        "stance",
+        "workstation",
+        "obstacles",
+        "phases",
+        "cycles",
+        "rest_s",
+        "replan",
+        "fatigue",
+        "objective",
+        "lifts",
+        "target_m",
+        "targets",
+        "object",
+        "load_kg",
+        "hand_force_n",
+        "left_share",
+        "duration_s",
+        "sex",
+        "stature_m",
+        "mass_kg",
+        "strength_percentile",
+        "every_cycles",
+        "every_s",
+        "capacity_tolerance",
+        "parameters",
+        "parameters_file",
+        "k_per_min",
+        "recovery_per_min",
+        "recovery",
+        "overrides",
+        "discomfort_weight",
+        "clearance_m",
+        "balance_margin_m",
+        "origin",
+        "destination",
+        "coupling",
+        "width_m",
+        "forward_m",
+        "toe_out_deg",
+        "feet",
+        "size_m",
+        "position_m",
+        "rpy_rad",
+        "radius_m",
+        "height_m",
+        "normal",
+        "center_m",
+        "grip_width_m",
+        "right_m",
+        "left_m",
+        "hand",
+        "obstacle",
+        "unknown field",
+        "missing field",
+        "duplicate",
     ]
     .iter()
     .map(|s| s.to_string())
@@ -696,7 +800,11 @@ fn scratch_repo() -> tempfile::TempDir {
     for sub in ["tasks", "robots", "data/opensim", "recordings"] {
         std::fs::create_dir_all(d.path().join(sub)).unwrap();
     }
-    for f in ["robots/worker.urdf", "robots/worker.strength.yaml", "data/opensim/rajagopal2016.mapping.yaml"] {
+    for f in [
+        "robots/worker.urdf",
+        "robots/worker.strength.yaml",
+        "data/opensim/rajagopal2016.mapping.yaml",
+    ] {
         std::fs::copy(root().join(f), d.path().join(f)).unwrap();
     }
     d
@@ -718,7 +826,12 @@ fn task_cases(dir: &Path, sub: &str, mutants: &[Mutant], fields: &[String]) -> V
             std::fs::write(dir.join(&name), &m.bytes).unwrap();
             Case {
                 id: m.id.clone(),
-                args: vec!["plan".into(), name.clone(), "--csv".into(), "no_such_dir/x.csv".into()],
+                args: vec![
+                    "plan".into(),
+                    name.clone(),
+                    "--csv".into(),
+                    "no_such_dir/x.csv".into(),
+                ],
                 cwd: dir.to_path_buf(),
                 stdin: None,
                 timeout: T_CHECK,
@@ -733,8 +846,18 @@ fn task_cases(dir: &Path, sub: &str, mutants: &[Mutant], fields: &[String]) -> V
 /// Accepted mutants worth planning: extreme values the validation let through.
 fn pick_for_planning(cases: &[Case], outcomes: &[Outcome], max: usize) -> Vec<usize> {
     const PRIORITY: &[&str] = &[
-        "1e-300", " 0", "long-string", "unicode", "empty-string", "-1", "negated", "removed",
-        "first-element-removed", "flipped", "emptied", "number-as-string",
+        "1e-300",
+        " 0",
+        "long-string",
+        "unicode",
+        "empty-string",
+        "-1",
+        "negated",
+        "removed",
+        "first-element-removed",
+        "flipped",
+        "emptied",
+        "number-as-string",
     ];
     let mut picked = Vec::new();
     for pat in PRIORITY {
@@ -746,7 +869,9 @@ fn pick_for_planning(cases: &[Case], outcomes: &[Outcome], max: usize) -> Vec<us
                 && o.id.ends_with(&format!(" {}", pat.trim()))
                 && !o.id.contains("repeated")
                 && !picked.contains(&i)
-                && !picked.iter().any(|&j: &usize| same_node(&cases[j].id, &cases[i].id))
+                && !picked
+                    .iter()
+                    .any(|&j: &usize| same_node(&cases[j].id, &cases[i].id))
             {
                 picked.push(i);
             }
@@ -756,7 +881,11 @@ fn pick_for_planning(cases: &[Case], outcomes: &[Outcome], max: usize) -> Vec<us
 }
 
 fn same_node(a: &str, b: &str) -> bool {
-    let node = |s: &str| s.rsplit_once(' ').map(|(n, _)| n.to_string()).unwrap_or_default();
+    let node = |s: &str| {
+        s.rsplit_once(' ')
+            .map(|(n, _)| n.to_string())
+            .unwrap_or_default()
+    };
     node(a) == node(b)
 }
 
@@ -776,7 +905,12 @@ fn mutants_of_the_quick_tasks_plan_or_are_refused() {
             let c = &cases[i];
             plan_cases.push(Case {
                 id: format!("{} [planned]", c.id),
-                args: vec!["plan".into(), c.file.clone(), "--no-adapt".into(), "--json".into()],
+                args: vec![
+                    "plan".into(),
+                    c.file.clone(),
+                    "--no-adapt".into(),
+                    "--json".into(),
+                ],
                 timeout: T_PLAN,
                 accepted_marker: None,
                 ..clone_case(c)
@@ -785,7 +919,11 @@ fn mutants_of_the_quick_tasks_plan_or_are_refused() {
         all.extend(outcomes);
     }
     let planned = run_cases(plan_cases);
-    assert!(planned.len() >= 6, "too few accepted mutants to plan: {}", planned.len());
+    assert!(
+        planned.len() >= 6,
+        "too few accepted mutants to plan: {}",
+        planned.len()
+    );
     all.extend(planned);
     assert_outcomes("quick task mutants", &all);
 }

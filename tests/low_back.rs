@@ -20,8 +20,8 @@
 
 use approx::assert_abs_diff_eq;
 use posture_opt::assess::low_back::{
-    low_back, BackParams, BalancingMuscle, CompressionVerdict, LowBackError, LumbarLoad,
-    ShearVerdict,
+    BackParams, BalancingMuscle, CompressionVerdict, LowBackError, LumbarLoad, ShearVerdict,
+    low_back,
 };
 
 const G: f64 = 9.81;
@@ -57,7 +57,11 @@ fn default_parameters_are_the_published_ones() {
 #[test]
 fn upright_50_nm_with_a_5_cm_extensor_arm() {
     let w = 40.0 * G;
-    let r = low_back(&upright([0.0, 50.0, 0.0], [0.0, 0.0, -w]), &BackParams::default()).unwrap();
+    let r = low_back(
+        &upright([0.0, 50.0, 0.0], [0.0, 0.0, -w]),
+        &BackParams::default(),
+    )
+    .unwrap();
     assert_abs_diff_eq!(r.sagittal_moment_nm, 50.0, epsilon = 1e-12);
     assert_abs_diff_eq!(r.extensor_force_n, 1000.0, epsilon = 1e-9);
     assert_abs_diff_eq!(r.muscle_compression_n, 1000.0, epsilon = 1e-9);
@@ -142,7 +146,11 @@ fn stoop_45_degrees_with_15_kg() {
         ..load
     };
     let r = low_back(&load, &BackParams::default()).unwrap();
-    assert_abs_diff_eq!(r.compression_n, 3370.681 + 441.45 + extra * cs, epsilon = 1e-3);
+    assert_abs_diff_eq!(
+        r.compression_n,
+        3370.681 + 441.45 + extra * cs,
+        epsilon = 1e-3
+    );
     assert_eq!(r.compression_verdict, CompressionVerdict::AboveActionLimit);
 }
 
@@ -153,10 +161,22 @@ fn stoop_45_degrees_with_15_kg() {
 fn limits_flag_compression_and_shear() {
     let p = BackParams::default();
     let c = |n: f64| low_back(&upright([0.0; 3], [0.0, 0.0, -n]), &p).unwrap();
-    assert_eq!(c(3399.0).compression_verdict, CompressionVerdict::WithinActionLimit);
-    assert_eq!(c(3400.0).compression_verdict, CompressionVerdict::WithinActionLimit);
-    assert_eq!(c(3401.0).compression_verdict, CompressionVerdict::AboveActionLimit);
-    assert_eq!(c(6400.0).compression_verdict, CompressionVerdict::AboveActionLimit);
+    assert_eq!(
+        c(3399.0).compression_verdict,
+        CompressionVerdict::WithinActionLimit
+    );
+    assert_eq!(
+        c(3400.0).compression_verdict,
+        CompressionVerdict::WithinActionLimit
+    );
+    assert_eq!(
+        c(3401.0).compression_verdict,
+        CompressionVerdict::AboveActionLimit
+    );
+    assert_eq!(
+        c(6400.0).compression_verdict,
+        CompressionVerdict::AboveActionLimit
+    );
     assert_eq!(
         c(6401.0).compression_verdict,
         CompressionVerdict::AboveMaximumPermissibleLimit
@@ -190,8 +210,11 @@ fn limits_flag_compression_and_shear() {
 /// part of Chaffin's SEM). 16 N·m / 0.08 m = 200 N; compression 200 + 400 = 600 N.
 #[test]
 fn extension_moment_is_balanced_by_the_flexors() {
-    let r = low_back(&upright([0.0, -16.0, 0.0], [0.0, 0.0, -400.0]), &BackParams::default())
-        .unwrap();
+    let r = low_back(
+        &upright([0.0, -16.0, 0.0], [0.0, 0.0, -400.0]),
+        &BackParams::default(),
+    )
+    .unwrap();
     assert_eq!(r.balancing_muscle, BalancingMuscle::Flexors);
     assert_eq!(r.extensor_force_n, 0.0);
     assert_abs_diff_eq!(r.flexor_force_n, 200.0, epsilon = 1e-9);
@@ -204,15 +227,21 @@ fn extension_moment_is_balanced_by_the_flexors() {
 /// lateral moment, so no muscle force; compression = 98.1 N (the hand load alone here).
 #[test]
 fn lateral_and_twisting_moments_are_reported_not_balanced() {
-    let r = low_back(&upright([19.62, 0.0, 0.0], [0.0, 0.0, -98.1]), &BackParams::default())
-        .unwrap();
+    let r = low_back(
+        &upright([19.62, 0.0, 0.0], [0.0, 0.0, -98.1]),
+        &BackParams::default(),
+    )
+    .unwrap();
     assert_abs_diff_eq!(r.lateral_moment_nm, 19.62, epsilon = 1e-12);
     assert_abs_diff_eq!(r.sagittal_moment_nm, 0.0, epsilon = 1e-12);
     assert_eq!(r.balancing_muscle, BalancingMuscle::None);
     assert_abs_diff_eq!(r.compression_n, 98.1, epsilon = 1e-12);
     // A twisting moment (about the spine axis) is reported as well.
-    let r = low_back(&upright([0.0, 0.0, 12.0], [0.0, 0.0, -98.1]), &BackParams::default())
-        .unwrap();
+    let r = low_back(
+        &upright([0.0, 0.0, 12.0], [0.0, 0.0, -98.1]),
+        &BackParams::default(),
+    )
+    .unwrap();
     assert_abs_diff_eq!(r.axial_moment_nm, 12.0, epsilon = 1e-12);
     assert_abs_diff_eq!(r.compression_n, 98.1, epsilon = 1e-12);
 }
@@ -284,7 +313,10 @@ fn invalid_inputs_are_refused() {
             ..p
         };
         assert!(
-            matches!(low_back(&ok, &q), Err(LowBackError::MomentArmOutOfRange { .. })),
+            matches!(
+                low_back(&ok, &q),
+                Err(LowBackError::MomentArmOutOfRange { .. })
+            ),
             "E = {bad}"
         );
     }

@@ -26,8 +26,8 @@
 
 use approx::assert_abs_diff_eq;
 use posture_opt::assess::niosh::{
-    assess_lift, composite, Adjustment, Coupling, EquationForm, Lift, LiftGeometry, NioshError,
-    Point, PointResult, WorkDuration, KG_PER_LB, LOAD_CONSTANT_KG, LOAD_CONSTANT_LB, M_PER_IN,
+    Adjustment, Coupling, EquationForm, KG_PER_LB, LOAD_CONSTANT_KG, LOAD_CONSTANT_LB, Lift,
+    LiftGeometry, M_PER_IN, NioshError, Point, PointResult, WorkDuration, assess_lift, composite,
 };
 
 /// Rounds half away from zero, as the manual's worksheets do (a small offset keeps e.g. 0.895
@@ -147,7 +147,11 @@ fn table_5_every_cell() {
             }
         }
         for col in 0..6 {
-            assert_eq!(fm(16.0, DURATIONS[col / 2], col % 2 == 0, form), 0.0, "> 15");
+            assert_eq!(
+                fm(16.0, DURATIONS[col / 2], col % 2 == 0, form),
+                0.0,
+                "> 15"
+            );
         }
     }
 }
@@ -164,7 +168,10 @@ fn table_5_below_0_2_lifts_per_minute_uses_0_2() {
     let r = assess_lift(&l).unwrap();
     assert_eq!(r.freq_used_per_min, 0.2);
     assert_eq!(r.origin.multipliers.fm, 0.85);
-    assert!(r.adjustments.contains(&Adjustment::FrequencyRaisedToMinimum));
+    assert!(
+        r.adjustments
+            .contains(&Adjustment::FrequencyRaisedToMinimum)
+    );
 }
 
 /// "When the measured frequency is not a whole number, the appropriate multiplier must be
@@ -238,7 +245,11 @@ fn table_7_every_cell() {
             };
             let r = assess_lift(&l).unwrap();
             assert_eq!(r.origin.multipliers.cm, below, "{coupling:?} below 30 in");
-            assert_eq!(r.destination.unwrap().multipliers.cm, above, "{coupling:?} above");
+            assert_eq!(
+                r.destination.unwrap().multipliers.cm,
+                above,
+                "{coupling:?} above"
+            );
         }
     }
     // The threshold itself: "V ≥ 30 in (75 cm)" is the second column.
@@ -315,10 +326,14 @@ fn variable_limits() {
         ..ideal()
     })
     .unwrap();
-    assert_eq!((r.origin.multipliers.hm, r.origin.multipliers.dm), (1.0, 1.0));
-    assert!(r
-        .adjustments
-        .contains(&Adjustment::HorizontalRaisedToMinimum { at: Point::Origin }));
+    assert_eq!(
+        (r.origin.multipliers.hm, r.origin.multipliers.dm),
+        (1.0, 1.0)
+    );
+    assert!(
+        r.adjustments
+            .contains(&Adjustment::HorizontalRaisedToMinimum { at: Point::Origin })
+    );
     assert!(r.adjustments.contains(&Adjustment::DistanceRaisedToMinimum));
 
     let r = assess_lift(&Lift {
@@ -395,7 +410,10 @@ fn duration_categories() {
         WorkDuration::from_hours((30.0 + 45.0) / 60.0),
         Ok(WorkDuration::UpTo2h)
     );
-    assert_eq!(WorkDuration::from_hours(45.0 / 60.0), Ok(WorkDuration::UpTo1h));
+    assert_eq!(
+        WorkDuration::from_hours(45.0 / 60.0),
+        Ok(WorkDuration::UpTo1h)
+    );
     assert_eq!(WorkDuration::from_hours(1.0), Ok(WorkDuration::UpTo1h));
     assert_eq!(WorkDuration::from_hours(2.0), Ok(WorkDuration::UpTo2h));
     assert_eq!(WorkDuration::from_hours(2.5), Ok(WorkDuration::UpTo8h));
@@ -610,7 +628,10 @@ fn invalid_inputs_are_refused() {
         ..ideal()
     })
     .unwrap_err();
-    assert!(e.to_string().starts_with("load_kg must be at least 0"), "{e}");
+    assert!(
+        e.to_string().starts_with("load_kg must be at least 0"),
+        "{e}"
+    );
     let e = assess_lift(&Lift {
         origin: geometry(f64::NAN, 0.75, 0.0),
         ..ideal()
@@ -643,8 +664,8 @@ fn invalid_inputs_are_refused() {
 #[test]
 fn task_lift_is_measured_on_the_planned_postures() {
     use posture_opt::assess::lifting::assess_lifts;
-    use posture_opt::body::{forward_kinematics, StaticsData};
-    use posture_opt::plan::{plan_task, Task};
+    use posture_opt::body::{StaticsData, forward_kinematics};
+    use posture_opt::plan::{Task, plan_task};
 
     let yaml = r#"name: box to shelf
 worker: {sex: female, stature_m: 1.62, mass_kg: 62.0, strength_percentile: 50}
@@ -666,7 +687,9 @@ cycles: 10
     std::fs::write(&path, yaml).unwrap();
     let task = Task::from_file(&path).unwrap();
     let plan = plan_task(&task).unwrap();
-    let lifting = assess_lifts(&task, &plan).expect("the task declares a lift").unwrap();
+    let lifting = assess_lifts(&task, &plan)
+        .expect("the task declares a lift")
+        .unwrap();
     assert_eq!(lifting.lifts.len(), 1);
     assert!(lifting.composite.is_none());
     let r = &lifting.lifts[0];
@@ -721,7 +744,7 @@ cycles: 10
 #[test]
 fn task_longer_than_8_hours_has_no_weight_limit() {
     use posture_opt::assess::lifting::assess_lifts;
-    use posture_opt::plan::{plan_task_with, PlanOptions, Task};
+    use posture_opt::plan::{PlanOptions, Task, plan_task_with};
 
     // 3000 cycles of 12 s: 10 h.
     let yaml = r#"name: ten hours of lifting

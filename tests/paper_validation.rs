@@ -24,14 +24,23 @@ struct Printed {
 }
 
 fn table2() -> Vec<Printed> {
-    let path = format!("{}/tests/data/fatigue/ma2009_table2.csv", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/fatigue/ma2009_table2.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     lines
         .map(|l| {
             let m: HashMap<&str, &str> = header.iter().copied().zip(l.split(',')).collect();
-            let n = |k: &str| if m[k].is_empty() { 0.0 } else { m[k].parse::<f64>().unwrap() };
+            let n = |k: &str| {
+                if m[k].is_empty() {
+                    0.0
+                } else {
+                    m[k].parse::<f64>().unwrap()
+                }
+            };
             Printed {
                 id: m["id"].to_string(),
                 form: m["form"].to_string(),
@@ -92,10 +101,24 @@ fn grid() -> Vec<f64> {
 
 /// The rows whose printed r and ICC follow from their printed equations (18 of 24).
 const REPRODUCED: [&str; 18] = [
-    "rohmert-general", "sato-general", "manenica-general", "sjogaard", "rose-general",
-    "mathiassen-shoulder", "hagberg-elbow", "manenica-elbow", "sato-elbow", "rose2000-elbow",
-    "rose1992-elbow", "manenica-hand", "manenica-body-pull", "manenica-body-torque", "manenica-back",
-    "rohmert-posture3", "rohmert-posture4", "rohmert-posture5",
+    "rohmert-general",
+    "sato-general",
+    "manenica-general",
+    "sjogaard",
+    "rose-general",
+    "mathiassen-shoulder",
+    "hagberg-elbow",
+    "manenica-elbow",
+    "sato-elbow",
+    "rose2000-elbow",
+    "rose1992-elbow",
+    "manenica-hand",
+    "manenica-body-pull",
+    "manenica-body-torque",
+    "manenica-back",
+    "rohmert-posture3",
+    "rohmert-posture4",
+    "rohmert-posture5",
 ];
 
 /// Table 2 recomputed here from the printed equations and Eq. 8 (k = 1): 18 rows reproduce the
@@ -110,7 +133,14 @@ fn table2_recomputed_independently() {
         let met: Vec<f64> = g.iter().map(|&f| p.met(f)).collect();
         let (r, i) = (pearson(&met, &eq8), icc(&met, &eq8));
         let ok = (r - p.r).abs() <= 1e-3 && (i - p.icc).abs() <= 1e-3;
-        assert_eq!(ok, REPRODUCED.contains(&p.id.as_str()), "{}: r {r:.4} ({}) ICC {i:.4} ({})", p.id, p.r, p.icc);
+        assert_eq!(
+            ok,
+            REPRODUCED.contains(&p.id.as_str()),
+            "{}: r {r:.4} ({}) ICC {i:.4} ({})",
+            p.id,
+            p.r,
+            p.icc
+        );
     }
 }
 
@@ -130,10 +160,21 @@ fn table2_deviations_explained_independently() {
     };
     let check = |id: &str, (r, i): (f64, f64)| {
         let p = row(id);
-        assert!((r - p.r).abs() <= 1e-3 && (i - p.icc).abs() <= 1e-3, "{id}: r {r} ICC {i} vs {} {}", p.r, p.icc);
+        assert!(
+            (r - p.r).abs() <= 1e-3 && (i - p.icc).abs() <= 1e-3,
+            "{id}: r {r} ICC {i} vs {} {}",
+            p.r,
+            p.icc
+        );
     };
-    check("monod-scherrer", stats(&|f| 0.04167 * (f - 0.14).powf(-2.4)));
-    check("huijgens", stats(&|f| 0.865 * ((1.0 - f) / (f - 0.15)).powf(1.0 / 1.4)));
+    check(
+        "monod-scherrer",
+        stats(&|f| 0.04167 * (f - 0.14).powf(-2.4)),
+    );
+    check(
+        "huijgens",
+        stats(&|f| 0.865 * ((1.0 - f) / (f - 0.15)).powf(1.0 / 1.4)),
+    );
     check("garg-shoulder", stats(&|f| 0.5618 * f.powf(-1.8551)));
     let sato = row("sato-shoulder");
     let rohmert = row("rohmert-shoulder");
@@ -153,23 +194,48 @@ fn library_static_validation_reproduces_the_paper() {
     assert_eq!(v.models.len(), 24);
     for ((m, lib), p) in v.models.iter().zip(TABLE2.iter()).zip(&printed) {
         assert_eq!(m.id, p.id);
-        assert_eq!((lib.published_r, lib.published_icc), (p.r, p.icc), "{}", p.id);
+        assert_eq!(
+            (lib.published_r, lib.published_icc),
+            (p.r, p.icc),
+            "{}",
+            p.id
+        );
         if REPRODUCED.contains(&p.id.as_str()) {
             assert_eq!(m.verdict, "reproduced", "{}", p.id);
-            assert!((m.r - p.r).abs() <= 1e-3 && (m.icc - p.icc).abs() <= 1e-3, "{}: {} {}", p.id, m.r, m.icc);
+            assert!(
+                (m.r - p.r).abs() <= 1e-3 && (m.icc - p.icc).abs() <= 1e-3,
+                "{}: {} {}",
+                p.id,
+                m.r,
+                m.icc
+            );
             // the printed equation, evaluated
             for (&f, &met) in v.fmvc.iter().zip(&m.met_min) {
-                assert!((met - p.met(f)).abs() <= 1e-12 * met.abs(), "{} at {f}", p.id);
+                assert!(
+                    (met - p.met(f)).abs() <= 1e-12 * met.abs(),
+                    "{} at {f}",
+                    p.id
+                );
             }
         } else {
             assert_eq!(m.verdict, "explained", "{}", p.id);
             let e = m.evidence.as_ref().unwrap();
             assert!(e.reproduces);
-            assert!((e.r - p.r).abs() <= 1e-3 && (e.icc - p.icc).abs() <= 1e-3, "{}: evidence {} {}", p.id, e.r, e.icc);
+            assert!(
+                (e.r - p.r).abs() <= 1e-3 && (e.icc - p.icc).abs() <= 1e-3,
+                "{}: evidence {} {}",
+                p.id,
+                e.r,
+                e.icc
+            );
         }
     }
     // Eq. 8 itself: MET(0.5) = 2 ln 2 min at k = 1
-    let i = v.fmvc.iter().position(|&f| (f - 0.5).abs() < 1e-12).unwrap();
+    let i = v
+        .fmvc
+        .iter()
+        .position(|&f| (f - 0.5).abs() < 1e-12)
+        .unwrap();
     assert!((v.dynamic_met_min[i] - 2.0 * 2f64.ln()).abs() < 1e-14);
 }
 
@@ -188,15 +254,26 @@ fn liu_eq13_14_solve_eq12() {
     let d = |ma: f64, mf: f64, muc: f64| (b * muc - f * ma + r * mf, f * ma - r * mf, -b * muc);
     for i in 1..=120_000 {
         let k1 = d(ma, mf, muc);
-        let k2 = d(ma + h / 2.0 * k1.0, mf + h / 2.0 * k1.1, muc + h / 2.0 * k1.2);
-        let k3 = d(ma + h / 2.0 * k2.0, mf + h / 2.0 * k2.1, muc + h / 2.0 * k2.2);
+        let k2 = d(
+            ma + h / 2.0 * k1.0,
+            mf + h / 2.0 * k1.1,
+            muc + h / 2.0 * k1.2,
+        );
+        let k3 = d(
+            ma + h / 2.0 * k2.0,
+            mf + h / 2.0 * k2.1,
+            muc + h / 2.0 * k2.2,
+        );
         let k4 = d(ma + h * k3.0, mf + h * k3.1, muc + h * k3.2);
         ma += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
         mf += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
         muc += h / 6.0 * (k1.2 + 2.0 * k2.2 + 2.0 * k3.2 + k4.2);
         if i % 10_000 == 0 {
             let t = i as f64 * h;
-            assert!((ma + muc - liu_capacity(t, f, beta, gamma)).abs() < 1e-9, "t = {t}");
+            assert!(
+                (ma + muc - liu_capacity(t, f, beta, gamma)).abs() < 1e-9,
+                "t = {t}"
+            );
         }
     }
     // the sum starts at M_A + M_uc = M0 (the sign of Eq. 15's last term as printed would not)
@@ -214,7 +291,12 @@ fn liu_limit_is_the_model_at_mvc() {
     }
     let mut last = f64::INFINITY;
     for case in v.liu.cases.iter().filter(|c| c.gamma == 0.0) {
-        assert!(case.max_abs_diff <= 1.0 / (case.beta - 1.0), "β = {}: {}", case.beta, case.max_abs_diff);
+        assert!(
+            case.max_abs_diff <= 1.0 / (case.beta - 1.0),
+            "β = {}: {}",
+            case.beta,
+            case.max_abs_diff
+        );
         assert!(case.max_abs_diff < last / 5.0);
         last = case.max_abs_diff;
     }
@@ -232,7 +314,11 @@ fn wexler_trend() {
     assert!(v.wexler.trend_reproduced);
     for l in &v.wexler.levels {
         assert!((l.initial_slope_per_min + l.fmvc).abs() < 1e-15);
-        assert!((l.half_capacity_min - 2f64.ln() / l.fmvc).abs() < 1e-12, "{}", l.fmvc);
+        assert!(
+            (l.half_capacity_min - 2f64.ln() / l.fmvc).abs() < 1e-12,
+            "{}",
+            l.fmvc
+        );
     }
 }
 
@@ -249,7 +335,12 @@ fn freund_takala() {
     }
     // β by hand: the log-space least squares fit of (1 − f)/(β f) to −ln f/f
     let n = ft.fmvc.len() as f64;
-    let ln_beta = ft.fmvc.iter().map(|&f| ((1.0 - f) / f).ln() - (-f.ln() / f).ln()).sum::<f64>() / n;
+    let ln_beta = ft
+        .fmvc
+        .iter()
+        .map(|&f| ((1.0 - f) / f).ln() - (-f.ln() / f).ln())
+        .sum::<f64>()
+        / n;
     assert!((ft.beta_per_min - ln_beta.exp()).abs() < 1e-12);
     assert!(ft.r > 0.99, "{}", ft.r);
 }
@@ -276,11 +367,24 @@ fn frey_law_avin_fitted_k() {
     for (region, b0, b1) in published {
         let a = v.frey_law_avin.iter().find(|a| a.region == region).unwrap();
         assert_eq!((a.b0_s, a.b1), (b0, b1), "{region}");
-        let r = posture_opt::fatigue::Region::ALL.iter().find(|r| r.name() == region).unwrap();
+        let r = posture_opt::fatigue::Region::ALL
+            .iter()
+            .find(|r| r.name() == region)
+            .unwrap();
         assert_eq!(frey_law_avin_curve(*r), Some((b0, b1)));
         let k_set = set.regions[region].k;
-        assert!((a.fitted_k_per_min / k_set - 1.0).abs() < 0.03, "{region}: {} vs {k_set}", a.fitted_k_per_min);
+        assert!(
+            (a.fitted_k_per_min / k_set - 1.0).abs() < 0.03,
+            "{region}: {} vs {k_set}",
+            a.fitted_k_per_min
+        );
     }
-    let k = |g: &str| v.frey_law_avin.iter().find(|a| a.region == g).unwrap().fitted_k_per_min;
+    let k = |g: &str| {
+        v.frey_law_avin
+            .iter()
+            .find(|a| a.region == g)
+            .unwrap()
+            .fitted_k_per_min
+    };
     assert!(k("shoulder") > 1.3 && k("ankle") < 0.6);
 }

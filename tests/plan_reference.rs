@@ -73,7 +73,8 @@ fn posture_opt_json(args: &[&str]) -> Value {
 }
 
 fn num(v: &Value, what: &str) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("{what}: not a number: {v}"))
+    v.as_f64()
+        .unwrap_or_else(|| panic!("{what}: not a number: {v}"))
 }
 
 /// The committed results of one task.
@@ -123,17 +124,24 @@ impl Reference {
         let sched = &j["schedule"];
         let cycles = sched["cycles"].as_u64().expect("schedule.cycles");
         let steps = sched["steps"].as_array().expect("schedule.steps");
-        let cycle_s: f64 = steps.iter().map(|s| num(&s["duration_s"], "duration_s")).sum();
+        let cycle_s: f64 = steps
+            .iter()
+            .map(|s| num(&s["duration_s"], "duration_s"))
+            .sum();
 
         let mut csv = String::from("t_s");
         for n in &joints {
             write!(csv, ",{n}").unwrap();
         }
-        csv.push_str(",force_x_n,force_y_n,force_z_n,left_force_x_n,left_force_y_n,left_force_z_n\n");
+        csv.push_str(
+            ",force_x_n,force_y_n,force_z_n,left_force_x_n,left_force_y_n,left_force_z_n\n",
+        );
         let mut row = |t: f64, q: &serde_json::Map<String, Value>, fr: &[f64], fl: &[f64]| {
             write!(csv, "{t}").unwrap();
             for n in &joints {
-                let v = q.get(n.as_str()).unwrap_or_else(|| panic!("{}: joint {n} missing", self.key));
+                let v = q
+                    .get(n.as_str())
+                    .unwrap_or_else(|| panic!("{}: joint {n} missing", self.key));
                 write!(csv, ",{}", num(v, n)).unwrap();
             }
             for f in fr.iter().chain(fl) {
@@ -142,13 +150,22 @@ impl Reference {
             csv.push('\n');
         };
         let forces = |s: &Value, k: &str| -> Vec<f64> {
-            s[k].as_array().expect(k).iter().map(|x| num(x, k)).collect()
+            s[k].as_array()
+                .expect(k)
+                .iter()
+                .map(|x| num(x, k))
+                .collect()
         };
         for c in 0..cycles {
             let mut t = c as f64 * cycle_s;
             for s in steps {
                 let name = s["posture"].as_str().expect("step posture");
-                row(t, posture(name), &forces(s, "right_force_n"), &forces(s, "left_force_n"));
+                row(
+                    t,
+                    posture(name),
+                    &forces(s, "right_force_n"),
+                    &forces(s, "left_force_n"),
+                );
                 t += num(&s["duration_s"], "duration_s");
             }
         }
@@ -173,7 +190,9 @@ fn references() -> Vec<Reference> {
     for e in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
         let p = e.unwrap().path();
         let name = p.file_name().unwrap().to_string_lossy().into_owned();
-        let Some(key) = name.strip_suffix(".json") else { continue };
+        let Some(key) = name.strip_suffix(".json") else {
+            continue;
+        };
         if key.contains('.') || key == "summary" || key == "verification" {
             continue;
         }
@@ -181,7 +200,10 @@ fn references() -> Vec<Reference> {
         if json.get("best_total_u_min").is_none() {
             continue;
         }
-        out.push(Reference { key: key.to_string(), json });
+        out.push(Reference {
+            key: key.to_string(),
+            json,
+        });
     }
     out.sort_by(|a, b| a.key.cmp(&b.key));
     assert!(
@@ -200,10 +222,19 @@ fn reference_inputs_are_the_repository_files() {
             stale.push(format!("{} differs from {}", a.display(), b.display()));
         }
     };
-    same_yaml(inputs.join("worker.strength.yaml"), root().join("robots/worker.strength.yaml"));
-    same_yaml(inputs.join("fatigue_sets.yaml"), root().join("data/fatigue_sets.yaml"));
+    same_yaml(
+        inputs.join("worker.strength.yaml"),
+        root().join("robots/worker.strength.yaml"),
+    );
+    same_yaml(
+        inputs.join("fatigue_sets.yaml"),
+        root().join("data/fatigue_sets.yaml"),
+    );
     for r in references() {
-        same_yaml(inputs.join(format!("{}.yaml", r.key)), root().join(r.task()));
+        same_yaml(
+            inputs.join(format!("{}.yaml", r.key)),
+            root().join(r.task()),
+        );
     }
     if read(&inputs.join("worker.urdf")) != read(&root().join("robots/worker.urdf")) {
         stale.push("inputs/worker.urdf differs from robots/worker.urdf".into());
@@ -217,7 +248,9 @@ fn reference_inputs_are_the_repository_files() {
         let w = &task["worker"];
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("w.urdf");
-        let pct = w.get("strength_percentile").map_or("50".to_string(), |v| v.to_string());
+        let pct = w
+            .get("strength_percentile")
+            .map_or("50".to_string(), |v| v.to_string());
         let st = Command::new(env!("CARGO_BIN_EXE_posture-opt"))
             .args(["robot", "--sex", w["sex"].as_str().unwrap()])
             .args(["--stature-m", &w["stature_m"].to_string()])
@@ -227,10 +260,18 @@ fn reference_inputs_are_the_repository_files() {
             .arg(&out)
             .output()
             .unwrap();
-        assert!(st.status.success(), "posture-opt robot: {}", String::from_utf8_lossy(&st.stderr));
+        assert!(
+            st.status.success(),
+            "posture-opt robot: {}",
+            String::from_utf8_lossy(&st.stderr)
+        );
         let mine = inputs.join(format!("{}.worker.urdf", r.key));
         if read(&out) != read(&mine) {
-            stale.push(format!("{} is not the worker {} generates", mine.display(), r.task()));
+            stale.push(format!(
+                "{} is not the worker {} generates",
+                mine.display(),
+                r.task()
+            ));
         }
     }
     assert!(
@@ -245,11 +286,22 @@ fn reference_inputs_are_the_repository_files() {
 fn reference_best_plans_evaluate_to_the_reference_totals() {
     let mut bad = Vec::new();
     for r in references() {
-        assert_eq!(r.json["feasible"]["ok"], Value::Bool(true), "{}: reference plan infeasible", r.key);
+        assert_eq!(
+            r.json["feasible"]["ok"],
+            Value::Bool(true),
+            "{}: reference plan infeasible",
+            r.key
+        );
         let dir = tempfile::tempdir().unwrap();
         let csv = dir.path().join(format!("{}.csv", r.key));
         std::fs::write(&csv, r.recording()).unwrap();
-        let ev = posture_opt_json(&["evaluate", csv.to_str().unwrap(), "--task", &r.task(), "--json"]);
+        let ev = posture_opt_json(&[
+            "evaluate",
+            csv.to_str().unwrap(),
+            "--task",
+            &r.task(),
+            "--json",
+        ]);
         let ours = num(&ev["total_u_min"], "total_u_min");
         let theirs = r.best();
         let rel = (ours - theirs).abs() / theirs.abs();
@@ -268,7 +320,10 @@ fn reference_best_plans_evaluate_to_the_reference_totals() {
             r.key, ev["samples_outside_range"]
         );
         if !(rel <= OBJECTIVE_REL_TOL) {
-            bad.push(format!("{}: reference {theirs} vs evaluate {ours} (rel {rel:.3e})", r.key));
+            bad.push(format!(
+                "{}: reference {theirs} vs evaluate {ours} (rel {rel:.3e})",
+                r.key
+            ));
         }
         let ex_agrees = match (ref_ex, first_ex) {
             (None, None) => true,
@@ -276,10 +331,17 @@ fn reference_best_plans_evaluate_to_the_reference_totals() {
             _ => false,
         };
         if !ex_agrees {
-            bad.push(format!("{}: first exhaustion: reference {ref_ex:?} s vs evaluate {first_ex:?} s", r.key));
+            bad.push(format!(
+                "{}: first exhaustion: reference {ref_ex:?} s vs evaluate {first_ex:?} s",
+                r.key
+            ));
         }
     }
-    assert!(bad.is_empty(), "objective disagreement:\n  {}", bad.join("\n  "));
+    assert!(
+        bad.is_empty(),
+        "objective disagreement:\n  {}",
+        bad.join("\n  ")
+    );
 }
 
 /// A good multi-start must do at least as well as the reference's typical local solve. It does
@@ -317,7 +379,13 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
             .map(|(r, _)| {
                 s.spawn(move || {
                     let task = r.task();
-                    let plan = posture_opt_json(&["plan", &task, "--no-adapt", "--fatigue-only", "--json"]);
+                    let plan = posture_opt_json(&[
+                        "plan",
+                        &task,
+                        "--no-adapt",
+                        "--fatigue-only",
+                        "--json",
+                    ]);
                     (r.key.clone(), plan)
                 })
             })
@@ -337,7 +405,9 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
         // If the plan holds another one the two optimise different problems and the reference
         // must be regenerated: that is reported as stale, not as a planner defect.
         let names = plan["joints"].as_array().expect("joints");
-        let rest = plan["summary"]["rest_posture_rad"].as_array().expect("summary.rest_posture_rad");
+        let rest = plan["summary"]["rest_posture_rad"]
+            .as_array()
+            .expect("summary.rest_posture_rad");
         let rest_diff = names.iter().zip(rest).fold(0.0_f64, |m, (n, v)| {
             let n = n.as_str().expect("joint name");
             let theirs = num(&r.json["rest_posture"][n], n);
@@ -351,7 +421,9 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
             plan["summary"]["exhaustion"],
             r.json["exhausted"],
             r.json["starts"]["count"],
-            all.iter().map(|x| (x * 1e4).round() / 1e4).collect::<Vec<_>>(),
+            all.iter()
+                .map(|x| (x * 1e4).round() / 1e4)
+                .collect::<Vec<_>>(),
             opt.len(),
             u / best,
             u / med,
@@ -376,5 +448,9 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
          reference, tests/data/reference/README.md):\n  {}",
         stale.join("\n  ")
     );
-    assert!(bad.is_empty(), "plan worse than the reference's median local optimum:\n  {}", bad.join("\n  "));
+    assert!(
+        bad.is_empty(),
+        "plan worse than the reference's median local optimum:\n  {}",
+        bad.join("\n  ")
+    );
 }

@@ -6,7 +6,7 @@
 use posture_opt::fatigue::{MaParams, MaState};
 use posture_opt::plan::qp::QpPrecision;
 use posture_opt::plan::sqp::SqpSettings;
-use posture_opt::plan::{plan_task_with, Plan, PlanOptions, Task};
+use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
 use std::path::Path;
 
 fn task_from(dir: &Path, name: &str, yaml: &str) -> Task {
@@ -71,13 +71,29 @@ fn assert_timeline_is_the_replay(plan: &Plan, what: &str) {
 #[test]
 fn the_timeline_is_the_hold_by_hold_replay_of_the_plans_postures() {
     let dir = tempfile::tempdir().unwrap();
-    let task = task_from(dir.path(), "hold", &one_phase(3.0, [0.40, -0.20, 1.05], 4.0, 2.0, 30));
+    let task = task_from(
+        dir.path(),
+        "hold",
+        &one_phase(3.0, [0.40, -0.20, 1.05], 4.0, 2.0, 30),
+    );
     for adapt in [false, true] {
-        let plan = plan_task_with(&task, PlanOptions { adapt, baselines: false, ..PlanOptions::default() }).unwrap();
+        let plan = plan_task_with(
+            &task,
+            PlanOptions {
+                adapt,
+                baselines: false,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap();
         assert_timeline_is_the_replay(&plan, if adapt { "adaptive" } else { "held" });
     }
     // and a shipped multi-phase task with a pushing force
-    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
+    let task = Task::from_file(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tasks/bench_assembly.yaml"
+    ))
+    .unwrap();
     let plan = plan_task_with(&task, held(false)).unwrap();
     assert_timeline_is_the_replay(&plan, "bench assembly");
 }
@@ -86,30 +102,60 @@ fn the_timeline_is_the_hold_by_hold_replay_of_the_plans_postures() {
 /// iterations; and the converged ones are the rule on a shipped task.
 #[test]
 fn converged_phases_meet_the_kkt_tolerance() {
-    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
+    let task = Task::from_file(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tasks/bench_assembly.yaml"
+    ))
+    .unwrap();
     let plan = plan_task_with(&task, held(false)).unwrap();
     let tol = SqpSettings::default().tol_kkt;
     let mut converged = 0;
     for p in &plan.summary.phases {
-        assert!(p.kkt_residual.is_finite() && p.kkt_residual >= 0.0, "{}", p.phase);
+        assert!(
+            p.kkt_residual.is_finite() && p.kkt_residual >= 0.0,
+            "{}",
+            p.phase
+        );
         assert!(p.iterations >= 1, "{}", p.phase);
         if p.converged {
             converged += 1;
-            assert!(p.kkt_residual <= tol, "{}: converged with KKT residual {} > {tol}", p.phase, p.kkt_residual);
+            assert!(
+                p.kkt_residual <= tol,
+                "{}: converged with KKT residual {} > {tol}",
+                p.phase,
+                p.kkt_residual
+            );
         }
-        assert!(p.hand_error_m < 0.01, "{}: hand error {}", p.phase, p.hand_error_m);
+        assert!(
+            p.hand_error_m < 0.01,
+            "{}: hand error {}",
+            p.phase,
+            p.hand_error_m
+        );
     }
-    assert!(converged >= plan.summary.phases.len() - 1, "{converged} of {} converged", plan.summary.phases.len());
+    assert!(
+        converged >= plan.summary.phases.len() - 1,
+        "{converged} of {} converged",
+        plan.summary.phases.len()
+    );
     // coordination passes never raise the objective
     for w in plan.summary.passes.windows(2) {
-        assert!(w[1] <= w[0] * (1.0 + 1e-9), "passes {:?}", plan.summary.passes);
+        assert!(
+            w[1] <= w[0] * (1.0 + 1e-9),
+            "passes {:?}",
+            plan.summary.passes
+        );
     }
 }
 
 #[test]
 fn planning_is_deterministic() {
     let dir = tempfile::tempdir().unwrap();
-    let task = task_from(dir.path(), "hold", &one_phase(2.0, [0.45, -0.25, 1.20], 5.0, 3.0, 20));
+    let task = task_from(
+        dir.path(),
+        "hold",
+        &one_phase(2.0, [0.45, -0.25, 1.20], 5.0, 3.0, 20),
+    );
     let a = plan_task_with(&task, held(false)).unwrap();
     let b = plan_task_with(&task, held(false)).unwrap();
     assert_eq!(a.summary.total_u.to_bits(), b.summary.total_u.to_bits());
@@ -120,15 +166,33 @@ fn planning_is_deterministic() {
 /// than 1e-4 (relative) nor flip the exhaustion verdict.
 #[test]
 fn the_solvers_precision_does_not_decide_the_plan() {
-    let task = Task::from_file(concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/bench_assembly.yaml")).unwrap();
+    let task = Task::from_file(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tasks/bench_assembly.yaml"
+    ))
+    .unwrap();
     let plan_with = |tol: f64| {
-        let sqp = SqpSettings { precision: QpPrecision { tol_gap: tol, tol_feas: tol }, ..SqpSettings::default() };
+        let sqp = SqpSettings {
+            precision: QpPrecision {
+                tol_gap: tol,
+                tol_feas: tol,
+            },
+            ..SqpSettings::default()
+        };
         plan_task_with(&task, PlanOptions { sqp, ..held(false) }).unwrap()
     };
     let (a, b) = (plan_with(1e-9), plan_with(1e-8));
     let rel = (a.summary.total_u - b.summary.total_u).abs() / a.summary.total_u;
-    assert!(rel <= 1e-4, "total U {} vs {} (relative {rel:.1e})", a.summary.total_u, b.summary.total_u);
-    assert_eq!(a.summary.exhaustion.is_some(), b.summary.exhaustion.is_some());
+    assert!(
+        rel <= 1e-4,
+        "total U {} vs {} (relative {rel:.1e})",
+        a.summary.total_u,
+        b.summary.total_u
+    );
+    assert_eq!(
+        a.summary.exhaustion.is_some(),
+        b.summary.exhaustion.is_some()
+    );
 }
 
 /// Any posture that holds a heavier load also holds a lighter one with less fatigue in every
@@ -139,14 +203,26 @@ fn a_heavier_load_is_never_planned_to_tire_less() {
     let dir = tempfile::tempdir().unwrap();
     let mut last = 0.0;
     for (i, kg) in [0.5, 1.5, 2.5, 3.5, 4.5].into_iter().enumerate() {
-        let task = task_from(dir.path(), &format!("load{i}"), &one_phase(kg, [0.45, -0.25, 1.10], 5.0, 3.0, 40));
+        let task = task_from(
+            dir.path(),
+            &format!("load{i}"),
+            &one_phase(kg, [0.45, -0.25, 1.10], 5.0, 3.0, 40),
+        );
         let plan = plan_task_with(
             &task,
-            PlanOptions { adapt: false, fatigue_only: true, baselines: false, ..PlanOptions::default() },
+            PlanOptions {
+                adapt: false,
+                fatigue_only: true,
+                baselines: false,
+                ..PlanOptions::default()
+            },
         )
         .unwrap();
         let u = plan.summary.total_u;
-        assert!(u >= last * (1.0 - 1e-3), "{kg} kg: U {u} below the lighter load's {last}");
+        assert!(
+            u >= last * (1.0 - 1e-3),
+            "{kg} kg: U {u} below the lighter load's {last}"
+        );
         last = u;
     }
 }
@@ -160,7 +236,11 @@ fn a_target_moved_in_small_steps_gives_smooth_totals() {
     let mut totals = Vec::new();
     let mut verdicts = Vec::new();
     for (i, z) in heights.iter().enumerate() {
-        let task = task_from(dir.path(), &format!("h{i}"), &one_phase(3.0, [0.45, -0.25, *z], 5.0, 3.0, 40));
+        let task = task_from(
+            dir.path(),
+            &format!("h{i}"),
+            &one_phase(3.0, [0.45, -0.25, *z], 5.0, 3.0, 40),
+        );
         let plan = plan_task_with(&task, held(false)).unwrap();
         totals.push(plan.summary.total_u);
         verdicts.push(plan.summary.exhaustion.is_some());
@@ -185,14 +265,26 @@ fn twelve_and_twenty_four_hour_shifts_plan_exactly() {
     let dir = tempfile::tempdir().unwrap();
     for hours in [12u32, 24] {
         let cycles = hours * 3600 / 20;
-        let task = task_from(dir.path(), &format!("shift{hours}"), &one_phase(2.0, [0.40, -0.20, 1.05], 8.0, 12.0, cycles));
+        let task = task_from(
+            dir.path(),
+            &format!("shift{hours}"),
+            &one_phase(2.0, [0.40, -0.20, 1.05], 8.0, 12.0, cycles),
+        );
         assert!((task.duration_s() - f64::from(hours) * 3600.0).abs() < 1e-6);
         let plan = plan_task_with(&task, held(true)).unwrap();
         assert_timeline_is_the_replay(&plan, &format!("{hours} h"));
         assert!(plan.summary.total_u.is_finite());
-        let blind = plan.summary.baselines.iter().find(|b| b.name == "fatigue_unaware").expect("the fatigue-unaware baseline");
+        let blind = plan
+            .summary
+            .baselines
+            .iter()
+            .find(|b| b.name == "fatigue_unaware")
+            .expect("the fatigue-unaware baseline");
         if blind.exhaustion.is_none() {
-            assert!(plan.summary.exhaustion.is_none(), "{hours} h: the plan exhausts where the fatigue-blind one does not");
+            assert!(
+                plan.summary.exhaustion.is_none(),
+                "{hours} h: the plan exhausts where the fatigue-blind one does not"
+            );
             assert!(
                 plan.summary.total_u <= blind.total_u * (1.0 + 1e-6),
                 "{hours} h: U {} above the fatigue-blind baseline's {}",

@@ -20,7 +20,7 @@
 //! end-to-end cases are hand-worked through the published tables.
 
 use posture_opt::assess::angles::{ArmAngles, BodyAngles};
-use posture_opt::assess::rula::{action_level, score, score_body, RulaActivity, RulaPosture};
+use posture_opt::assess::rula::{RulaActivity, RulaPosture, action_level, score, score_body};
 use posture_opt::body::{BodyModel, StaticsData};
 
 // ---------------------------------------------------------------------------------------------
@@ -131,7 +131,13 @@ const IDLE: RulaActivity = RulaActivity {
 /// * wrist twist 1: mid-range (0); 2: at the end of its range (90 % of the joint's range).
 fn group_a(ua: usize, la: usize, w: usize, t: usize) -> RulaPosture {
     let mut p = neutral();
-    let (f, abd) = [(0.0, 0.0), (30.0, 0.0), (60.0, 0.0), (100.0, 0.0), (100.0, 30.0)][ua - 1];
+    let (f, abd) = [
+        (0.0, 0.0),
+        (30.0, 0.0),
+        (60.0, 0.0),
+        (100.0, 0.0),
+        (100.0, 30.0),
+    ][ua - 1];
     p.upper_arm_flexion_deg = f;
     p.upper_arm_abduction_deg = abd;
     let (e, side) = [(80.0, false), (30.0, false), (30.0, true)][la - 1];
@@ -341,7 +347,11 @@ fn upper_arm_bands() {
             upper_arm_flexion_deg: deg,
             ..neutral()
         };
-        assert_eq!(score(&p, &IDLE).upper_arm, expected, "upper arm at {deg} deg");
+        assert_eq!(
+            score(&p, &IDLE).upper_arm,
+            expected,
+            "upper arm at {deg} deg"
+        );
     }
     // Abducted (40° out of the sagittal plane): +1.
     let p = RulaPosture {
@@ -356,7 +366,14 @@ fn upper_arm_bands() {
 /// midline or out to the side.
 #[test]
 fn lower_arm_bands() {
-    for (deg, expected) in [(0.0, 2), (45.0, 2), (61.0, 1), (90.0, 1), (99.0, 1), (120.0, 2)] {
+    for (deg, expected) in [
+        (0.0, 2),
+        (45.0, 2),
+        (61.0, 1),
+        (90.0, 1),
+        (99.0, 1),
+        (120.0, 2),
+    ] {
         let p = RulaPosture {
             elbow_flexion_deg: deg,
             ..neutral()
@@ -407,7 +424,14 @@ fn wrist_and_twist_bands() {
 /// +1 twisted, +1 side-bending.
 #[test]
 fn neck_bands() {
-    for (deg, expected) in [(0.0, 1), (8.0, 1), (15.0, 2), (25.0, 3), (60.0, 3), (-20.0, 4)] {
+    for (deg, expected) in [
+        (0.0, 1),
+        (8.0, 1),
+        (15.0, 2),
+        (25.0, 3),
+        (60.0, 3),
+        (-20.0, 4),
+    ] {
         let p = RulaPosture {
             neck_flexion_deg: deg,
             ..neutral()
@@ -715,9 +739,8 @@ fn both_arms_tie_goes_to_the_loaded_arm() {
 /// C[2][1] = 2, action level 1.
 #[test]
 fn worker_standing_upright() {
-    let m =
-        BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
-            .unwrap();
+    let m = BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
+        .unwrap();
     let mut data = StaticsData::new(&m, 2);
     let q = vec![0.0; m.nq()];
     let b = BodyAngles::measure(&m, &mut data, &q, Some(0.5)).unwrap();
@@ -727,7 +750,10 @@ fn worker_standing_upright() {
             (r.upper_arm, r.lower_arm, r.wrist, r.wrist_twist),
             (1, 2, 1, 1)
         );
-        assert_eq!((r.posture_a, r.neck, r.trunk, r.legs, r.posture_b), (2, 1, 1, 1, 1));
+        assert_eq!(
+            (r.posture_a, r.neck, r.trunk, r.legs, r.posture_b),
+            (2, 1, 1, 1, 1)
+        );
         assert_eq!((r.grand_score, r.action_level), (2, 1));
     }
 }
@@ -738,9 +764,8 @@ fn worker_standing_upright() {
 /// 3.
 #[test]
 fn worker_reaching_forward_with_a_stoop() {
-    let m =
-        BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
-            .unwrap();
+    let m = BodyModel::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
+        .unwrap();
     let mut data = StaticsData::new(&m, 2);
     let mut q = vec![0.0; m.nq()];
     for (name, deg) in [
@@ -753,7 +778,10 @@ fn worker_reaching_forward_with_a_stoop() {
     let b = BodyAngles::measure(&m, &mut data, &q, Some(0.5)).unwrap();
     let (r, _) = score_body(&b, &IDLE, true);
     assert_eq!(r.side, "right");
-    assert_eq!((r.upper_arm, r.lower_arm, r.wrist, r.wrist_twist), (3, 1, 1, 1));
+    assert_eq!(
+        (r.upper_arm, r.lower_arm, r.wrist, r.wrist_twist),
+        (3, 1, 1, 1)
+    );
     assert_eq!((r.posture_a, r.trunk, r.posture_b), (3, 3, 3));
     assert_eq!(r.grand_score, 3);
 }

@@ -42,7 +42,10 @@ fn icc_by_hand() {
 
 fn series() -> impl Strategy<Value = (Vec<f64>, Vec<f64>)> {
     (3usize..40).prop_flat_map(|n| {
-        (proptest::collection::vec(-100.0f64..100.0, n), proptest::collection::vec(-100.0f64..100.0, n))
+        (
+            proptest::collection::vec(-100.0f64..100.0, n),
+            proptest::collection::vec(-100.0f64..100.0, n),
+        )
     })
 }
 

@@ -6,8 +6,8 @@ mod common;
 
 use common::{tempdir, write};
 use nalgebra::{Point3, Vector3};
-use posture_opt::body::{forward_kinematics, StaticsData};
-use posture_opt::plan::{plan_task_with, PlanOptions, Task};
+use posture_opt::body::{StaticsData, forward_kinematics};
+use posture_opt::plan::{PlanOptions, Task, plan_task_with};
 
 /// Earth's gravity \[m/s²\], the documented default (0, 0, −9.81).
 const G: f64 = 9.81;
@@ -29,13 +29,22 @@ fn a_minimal_task_loads_with_the_generated_worker() {
     let t = Task::from_file(write(dir.path(), "ok.yaml", BASE)).unwrap();
     assert_eq!(t.robot, "generated from worker");
     assert_eq!(t.name, "t");
-    assert_eq!((t.worker.stature_m, t.worker.mass_kg, t.worker.strength_percentile), (1.755, 78.0, 50.0));
+    assert_eq!(
+        (
+            t.worker.stature_m,
+            t.worker.mass_kg,
+            t.worker.strength_percentile
+        ),
+        (1.755, 78.0, 50.0)
+    );
     // the body weighs what the worker weighs (segment masses printed to 0.1 g in the URDF)
     let mass: f64 = t.model.links.iter().map(|l| l.mass_kg).sum();
     assert!((mass - 78.0).abs() < 0.01, "body mass {mass}");
     // the floating pelvis has no muscles; every other moving joint has two half-joints
     let names = t.joint_names();
-    let pelvis: Vec<usize> = (0..names.len()).filter(|&k| names[k].starts_with("pelvis_")).collect();
+    let pelvis: Vec<usize> = (0..names.len())
+        .filter(|&k| names[k].starts_with("pelvis_"))
+        .collect();
     assert_eq!(pelvis.len(), 6);
     let mut unactuated = t.unactuated.clone();
     unactuated.sort();
@@ -53,11 +62,23 @@ fn a_minimal_task_loads_with_the_generated_worker() {
     let soles: Vec<Vector3<f64>> = (0..2)
         .map(|i| (st.world_from_foot[i] * Point3::from(st.feet[i].sole_center_in_link_m)).coords)
         .collect();
-    assert!((soles[0].y - soles[1].y - 0.21 * 1.755).abs() < 1e-9, "{soles:?}");
-    assert!(soles.iter().all(|s| s.z.abs() < 1e-9 && s.x.abs() < 1e-9), "{soles:?}");
+    assert!(
+        (soles[0].y - soles[1].y - 0.21 * 1.755).abs() < 1e-9,
+        "{soles:?}"
+    );
+    assert!(
+        soles.iter().all(|s| s.z.abs() < 1e-9 && s.x.abs() < 1e-9),
+        "{soles:?}"
+    );
     // hands, the phase and the timing
-    assert_eq!(t.hand_links[0].as_ref().map(|h| h.1.as_str()), Some("r_hand_grip"));
-    assert_eq!(t.hand_links[1].as_ref().map(|h| h.1.as_str()), Some("l_hand_grip"));
+    assert_eq!(
+        t.hand_links[0].as_ref().map(|h| h.1.as_str()),
+        Some("r_hand_grip")
+    );
+    assert_eq!(
+        t.hand_links[1].as_ref().map(|h| h.1.as_str()),
+        Some("l_hand_grip")
+    );
     let ph = &t.phases[0];
     assert_eq!(ph.targets_m, [Some(Vector3::new(0.35, -0.2, 1.0)), None]);
     assert!((ph.hand_force_n[0] - Vector3::new(0.0, 0.0, -2.0 * G)).norm() < 1e-12);
@@ -80,9 +101,19 @@ fn an_object_in_both_hands_splits_targets_and_load() {
     let t = Task::from_file(write(dir.path(), "box.yaml", text)).unwrap();
     let ph = &t.phases[0];
     // the hands a grip width apart along y, the left one on +y, each carrying half the load
-    assert_eq!(ph.targets_m, [Some(Vector3::new(0.45, -0.2, 1.0)), Some(Vector3::new(0.45, 0.2, 1.0))]);
+    assert_eq!(
+        ph.targets_m,
+        [
+            Some(Vector3::new(0.45, -0.2, 1.0)),
+            Some(Vector3::new(0.45, 0.2, 1.0))
+        ]
+    );
     for h in 0..2 {
-        assert!((ph.hand_force_n[h] - Vector3::new(0.0, 0.0, -3.0 * G)).norm() < 1e-12, "{:?}", ph.hand_force_n);
+        assert!(
+            (ph.hand_force_n[h] - Vector3::new(0.0, 0.0, -3.0 * G)).norm() < 1e-12,
+            "{:?}",
+            ph.hand_force_n
+        );
     }
 }
 
@@ -95,84 +126,282 @@ fn refused(name: &str, text: &str, needles: &[&str]) {
         Ok(_) => panic!("{name}: accepted"),
         Err(e) => e.to_string(),
     };
-    assert!(e.starts_with(&p.display().to_string()), "{name}: the message does not start with the file:\n{e}");
+    assert!(
+        e.starts_with(&p.display().to_string()),
+        "{name}: the message does not start with the file:\n{e}"
+    );
     for n in needles {
-        assert!(e.contains(n), "{name}: the message does not contain '{n}':\n{e}");
+        assert!(
+            e.contains(n),
+            "{name}: the message does not contain '{n}':\n{e}"
+        );
     }
 }
 
 #[test]
 fn syntax_and_unknown_fields_are_located_by_line_and_column() {
     // line 9 is the new field, column 1
-    refused("unknown.yaml", &BASE.replace("rest_s: 5.0", "rest_s: 5.0\nresting: 3"), &["line 9 column 1", "unknown field", "resting"]);
+    refused(
+        "unknown.yaml",
+        &BASE.replace("rest_s: 5.0", "rest_s: 5.0\nresting: 3"),
+        &["line 9 column 1", "unknown field", "resting"],
+    );
     // inside a phase's flow mapping: line 7, the column where `lod_kg` starts
     let text = BASE.replace("duration_s: 5.0}", "duration_s: 5.0, lod_kg: 3}");
     let col = text.lines().nth(6).unwrap().find("lod_kg").unwrap() + 1;
-    refused("phase_field.yaml", &text, &[&format!("line 7 column {col}"), "unknown field", "lod_kg"]);
+    refused(
+        "phase_field.yaml",
+        &text,
+        &[&format!("line 7 column {col}"), "unknown field", "lod_kg"],
+    );
     // an unknown worker field, a misspelt variant
-    refused("worker_field.yaml", &BASE.replace("mass_kg: 78.0}", "mass_kg: 78.0, age: 40}"), &["line 2", "age"]);
-    refused("sex.yaml", &BASE.replace("sex: male", "sex: mail"), &["line 2 column 15", "mail", "male", "female"]);
+    refused(
+        "worker_field.yaml",
+        &BASE.replace("mass_kg: 78.0}", "mass_kg: 78.0, age: 40}"),
+        &["line 2", "age"],
+    );
+    refused(
+        "sex.yaml",
+        &BASE.replace("sex: male", "sex: mail"),
+        &["line 2 column 15", "mail", "male", "female"],
+    );
     // a missing required field, a wrong type, broken YAML
-    refused("no_duration.yaml", &BASE.replace(", duration_s: 5.0", ""), &["line 7", "missing field", "duration_s"]);
-    refused("cycles_word.yaml", &BASE.replace("cycles: 10", "cycles: ten"), &["line 9 column 9"]);
-    refused("bracket.yaml", &BASE.replace("cycles: 10", "cycles: [10"), &["line 9"]);
+    refused(
+        "no_duration.yaml",
+        &BASE.replace(", duration_s: 5.0", ""),
+        &["line 7", "missing field", "duration_s"],
+    );
+    refused(
+        "cycles_word.yaml",
+        &BASE.replace("cycles: 10", "cycles: ten"),
+        &["line 9 column 9"],
+    );
+    refused(
+        "bracket.yaml",
+        &BASE.replace("cycles: 10", "cycles: [10"),
+        &["line 9"],
+    );
     // an unreadable file
     let dir = tempdir();
     let missing = dir.path().join("absent.yaml");
     let e = Task::from_file(&missing).unwrap_err().to_string();
-    assert!(e.starts_with(&missing.display().to_string()) && e.contains("cannot read"), "{e}");
+    assert!(
+        e.starts_with(&missing.display().to_string()) && e.contains("cannot read"),
+        "{e}"
+    );
 }
 
 #[test]
 fn values_are_refused_with_the_field_and_the_value() {
     let phase = "phases[0] (hold)";
     // worker ranges (documented: stature 1.2..2.3 m, mass 30..200 kg, percentile 1..99)
-    refused("tall.yaml", &BASE.replace("stature_m: 1.755", "stature_m: 2.5"), &["worker", "stature_m", "1.2", "2.3", "got 2.5"]);
-    refused("short.yaml", &BASE.replace("stature_m: 1.755", "stature_m: 0.9"), &["worker", "stature_m", "got 0.9"]);
-    refused("light.yaml", &BASE.replace("mass_kg: 78.0", "mass_kg: 20"), &["worker", "mass_kg", "got 20"]);
-    refused("pct.yaml", &BASE.replace("mass_kg: 78.0}", "mass_kg: 78.0, strength_percentile: 100}"), &["worker", "strength_percentile", "got 100"]);
+    refused(
+        "tall.yaml",
+        &BASE.replace("stature_m: 1.755", "stature_m: 2.5"),
+        &["worker", "stature_m", "1.2", "2.3", "got 2.5"],
+    );
+    refused(
+        "short.yaml",
+        &BASE.replace("stature_m: 1.755", "stature_m: 0.9"),
+        &["worker", "stature_m", "got 0.9"],
+    );
+    refused(
+        "light.yaml",
+        &BASE.replace("mass_kg: 78.0", "mass_kg: 20"),
+        &["worker", "mass_kg", "got 20"],
+    );
+    refused(
+        "pct.yaml",
+        &BASE.replace("mass_kg: 78.0}", "mass_kg: 78.0, strength_percentile: 100}"),
+        &["worker", "strength_percentile", "got 100"],
+    );
     // durations, targets, loads
-    refused("neg.yaml", &BASE.replace("duration_s: 5.0", "duration_s: -5.0"), &[&format!("{phase}.duration_s"), "> 0", "got -5"]);
-    refused("zero.yaml", &BASE.replace("duration_s: 5.0", "duration_s: 0"), &[&format!("{phase}.duration_s"), "got 0"]);
-    refused("target_nan.yaml", &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, .nan, 1.0]"), &[&format!("{phase}.target_m"), "finite", "NaN"]);
-    refused("target_inf.yaml", &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, .inf]"), &[&format!("{phase}.target_m"), "finite", "inf"]);
-    refused("target_far.yaml", &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 5000]"), &[&format!("{phase}.target_m"), "5000"]);
-    refused("no_target.yaml", &BASE.replace("target_m: [0.35, -0.2, 1.0], ", ""), &[&format!("{phase}.target_m"), "exactly one"]);
-    refused("load_nan.yaml", &BASE.replace("load_kg: 2.0", "load_kg: .nan"), &[&format!("{phase}.load_kg"), "NaN"]);
-    refused("load_neg.yaml", &BASE.replace("load_kg: 2.0", "load_kg: -2"), &[&format!("{phase}.load_kg"), "got -2"]);
-    refused("both.yaml", &BASE.replace("load_kg: 2.0", "load_kg: 2.0, hand_force_n: [0, 0, -10]"), &[&format!("{phase}.load_kg"), "hand_force_n", "not both"]);
-    refused("force_nan.yaml", &BASE.replace("load_kg: 2.0", "hand_force_n: [0, .nan, -10]"), &[&format!("{phase}.hand_force_n"), "finite"]);
-    refused("share.yaml", &BASE.replace("load_kg: 2.0", "load_kg: 2.0, left_share: 0.3"), &[&format!("{phase}.left_share"), "two-handed"]);
-    let object = BASE.replace("target_m: [0.35, -0.2, 1.0]", "object: {center_m: [0.4, 0, 1.0], grip_width_m: 5}");
-    refused("grip.yaml", &object, &[&format!("{phase}.object.grip_width_m"), "got 5"]);
-    refused("no_phases.yaml", &BASE.replace("phases:\n  - {name: hold, target_m: [0.35, -0.2, 1.0], load_kg: 2.0, duration_s: 5.0}", "phases: []"), &["phases", "at least one"]);
+    refused(
+        "neg.yaml",
+        &BASE.replace("duration_s: 5.0", "duration_s: -5.0"),
+        &[&format!("{phase}.duration_s"), "> 0", "got -5"],
+    );
+    refused(
+        "zero.yaml",
+        &BASE.replace("duration_s: 5.0", "duration_s: 0"),
+        &[&format!("{phase}.duration_s"), "got 0"],
+    );
+    refused(
+        "target_nan.yaml",
+        &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, .nan, 1.0]"),
+        &[&format!("{phase}.target_m"), "finite", "NaN"],
+    );
+    refused(
+        "target_inf.yaml",
+        &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, .inf]"),
+        &[&format!("{phase}.target_m"), "finite", "inf"],
+    );
+    refused(
+        "target_far.yaml",
+        &BASE.replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 5000]"),
+        &[&format!("{phase}.target_m"), "5000"],
+    );
+    refused(
+        "no_target.yaml",
+        &BASE.replace("target_m: [0.35, -0.2, 1.0], ", ""),
+        &[&format!("{phase}.target_m"), "exactly one"],
+    );
+    refused(
+        "load_nan.yaml",
+        &BASE.replace("load_kg: 2.0", "load_kg: .nan"),
+        &[&format!("{phase}.load_kg"), "NaN"],
+    );
+    refused(
+        "load_neg.yaml",
+        &BASE.replace("load_kg: 2.0", "load_kg: -2"),
+        &[&format!("{phase}.load_kg"), "got -2"],
+    );
+    refused(
+        "both.yaml",
+        &BASE.replace("load_kg: 2.0", "load_kg: 2.0, hand_force_n: [0, 0, -10]"),
+        &[&format!("{phase}.load_kg"), "hand_force_n", "not both"],
+    );
+    refused(
+        "force_nan.yaml",
+        &BASE.replace("load_kg: 2.0", "hand_force_n: [0, .nan, -10]"),
+        &[&format!("{phase}.hand_force_n"), "finite"],
+    );
+    refused(
+        "share.yaml",
+        &BASE.replace("load_kg: 2.0", "load_kg: 2.0, left_share: 0.3"),
+        &[&format!("{phase}.left_share"), "two-handed"],
+    );
+    let object = BASE.replace(
+        "target_m: [0.35, -0.2, 1.0]",
+        "object: {center_m: [0.4, 0, 1.0], grip_width_m: 5}",
+    );
+    refused(
+        "grip.yaml",
+        &object,
+        &[&format!("{phase}.object.grip_width_m"), "got 5"],
+    );
+    refused(
+        "no_phases.yaml",
+        &BASE.replace(
+            "phases:\n  - {name: hold, target_m: [0.35, -0.2, 1.0], load_kg: 2.0, duration_s: 5.0}",
+            "phases: []",
+        ),
+        &["phases", "at least one"],
+    );
     // cycles, rest, the task's length
-    refused("cycles.yaml", &BASE.replace("cycles: 10", "cycles: 0"), &["cycles", "at least 1"]);
-    refused("rest.yaml", &BASE.replace("rest_s: 5.0", "rest_s: -1"), &["rest_s", "got -1"]);
+    refused(
+        "cycles.yaml",
+        &BASE.replace("cycles: 10", "cycles: 0"),
+        &["cycles", "at least 1"],
+    );
+    refused(
+        "rest.yaml",
+        &BASE.replace("rest_s: 5.0", "rest_s: -1"),
+        &["rest_s", "got -1"],
+    );
     let steps = posture_opt::plan::task::MAX_STEPS;
-    refused("steps.yaml", &BASE.replace("cycles: 10", &format!("cycles: {steps}")), &["cycles", &steps.to_string()]);
-    refused("year.yaml", &BASE.replace("duration_s: 5.0", "duration_s: 3.0e7"), &["cycles", "year"]);
+    refused(
+        "steps.yaml",
+        &BASE.replace("cycles: 10", &format!("cycles: {steps}")),
+        &["cycles", &steps.to_string()],
+    );
+    refused(
+        "year.yaml",
+        &BASE.replace("duration_s: 5.0", "duration_s: 3.0e7"),
+        &["cycles", "year"],
+    );
     // body, frames, stance, gravity
-    refused("robot.yaml", &format!("robot: nowhere.urdf\n{BASE}"), &["robot", "nowhere.urdf"]);
-    refused("frame.yaml", &format!("hand_frame: nose\n{BASE}"), &["hand_frame", "'nose'", "not a link"]);
-    refused("stance.yaml", &format!("{BASE}stance: {{width_m: 3}}\n"), &["stance.width_m", "got 3"]);
-    refused("toe.yaml", &format!("{BASE}stance: {{toe_out_deg: 60}}\n"), &["stance.toe_out_deg", "got 60"]);
-    refused("gravity.yaml", &format!("{BASE}gravity_m_s2: [0, 0, -100]\n"), &["gravity_m_s2", "-100"]);
-    refused("box.yaml", &BASE.replace("{name: floor, plane: {normal: [0, 0, 1]}}", "{name: shelf, box: {size_m: [0.4, 0, 0.02]}}"), &["workstation.obstacles", "'shelf'", "size_m"]);
+    refused(
+        "robot.yaml",
+        &format!("robot: nowhere.urdf\n{BASE}"),
+        &["robot", "nowhere.urdf"],
+    );
+    refused(
+        "frame.yaml",
+        &format!("hand_frame: nose\n{BASE}"),
+        &["hand_frame", "'nose'", "not a link"],
+    );
+    refused(
+        "stance.yaml",
+        &format!("{BASE}stance: {{width_m: 3}}\n"),
+        &["stance.width_m", "got 3"],
+    );
+    refused(
+        "toe.yaml",
+        &format!("{BASE}stance: {{toe_out_deg: 60}}\n"),
+        &["stance.toe_out_deg", "got 60"],
+    );
+    refused(
+        "gravity.yaml",
+        &format!("{BASE}gravity_m_s2: [0, 0, -100]\n"),
+        &["gravity_m_s2", "-100"],
+    );
+    refused(
+        "box.yaml",
+        &BASE.replace(
+            "{name: floor, plane: {normal: [0, 0, 1]}}",
+            "{name: shelf, box: {size_m: [0.4, 0, 0.02]}}",
+        ),
+        &["workstation.obstacles", "'shelf'", "size_m"],
+    );
     // fatigue: rates, names of regions, half-joints and sets
-    refused("k.yaml", &format!("{BASE}fatigue: {{k_per_min: -1}}\n"), &["fatigue.k_per_min", "got -1"]);
-    refused("r.yaml", &format!("{BASE}fatigue: {{recovery_per_min: 50}}\n"), &["fatigue.recovery_per_min", "got 50"]);
-    refused("limit.yaml", &format!("{BASE}fatigue: {{recovery: {{rest_per_min: 0.4, limit_fmvc: 2}}}}\n"), &["fatigue.recovery", "got 2"]);
-    refused("region.yaml", &format!("{BASE}fatigue: {{overrides: {{kneee: {{k_per_min: 2}}}}}}\n"), &["fatigue.overrides.kneee", "did you mean 'knee'"]);
+    refused(
+        "k.yaml",
+        &format!("{BASE}fatigue: {{k_per_min: -1}}\n"),
+        &["fatigue.k_per_min", "got -1"],
+    );
+    refused(
+        "r.yaml",
+        &format!("{BASE}fatigue: {{recovery_per_min: 50}}\n"),
+        &["fatigue.recovery_per_min", "got 50"],
+    );
+    refused(
+        "limit.yaml",
+        &format!("{BASE}fatigue: {{recovery: {{rest_per_min: 0.4, limit_fmvc: 2}}}}\n"),
+        &["fatigue.recovery", "got 2"],
+    );
+    refused(
+        "region.yaml",
+        &format!("{BASE}fatigue: {{overrides: {{kneee: {{k_per_min: 2}}}}}}\n"),
+        &["fatigue.overrides.kneee", "did you mean 'knee'"],
+    );
     // an unknown joint in a half-joint id
-    refused("half_joint.yaml", &format!("{BASE}fatigue: {{overrides: {{r_elbow_flexon+: {{k_per_min: 2}}}}}}\n"), &["fatigue.overrides.r_elbow_flexon+", "half-joint id"]);
-    refused("override_k.yaml", &format!("{BASE}fatigue: {{overrides: {{knee: {{k_per_min: 100}}}}}}\n"), &["fatigue.overrides.knee.k_per_min", "got 100"]);
-    refused("set.yaml", &format!("{BASE}fatigue: {{parameters: ma2010}}\n"), &["fatigue.parameters", "'ma2010'", "ma2009"]);
+    refused(
+        "half_joint.yaml",
+        &format!("{BASE}fatigue: {{overrides: {{r_elbow_flexon+: {{k_per_min: 2}}}}}}\n"),
+        &["fatigue.overrides.r_elbow_flexon+", "half-joint id"],
+    );
+    refused(
+        "override_k.yaml",
+        &format!("{BASE}fatigue: {{overrides: {{knee: {{k_per_min: 100}}}}}}\n"),
+        &["fatigue.overrides.knee.k_per_min", "got 100"],
+    );
+    refused(
+        "set.yaml",
+        &format!("{BASE}fatigue: {{parameters: ma2010}}\n"),
+        &["fatigue.parameters", "'ma2010'", "ma2009"],
+    );
     // lifts name phases; the optimiser's settings and re-planning have ranges
-    refused("lift.yaml", &format!("{BASE}lifts: [{{name: l, origin: hold, destination: hodl}}]\n"), &["lifts[0] (l).destination", "'hodl'", "did you mean 'hold'"]);
-    refused("clearance.yaml", &format!("{BASE}objective: {{clearance_m: 2}}\n"), &["objective.clearance_m", "got 2"]);
-    refused("replan.yaml", &format!("{BASE}replan: {{every_cycles: 0}}\n"), &["replan.every_cycles"]);
-    refused("tolerance.yaml", &format!("{BASE}replan: {{capacity_tolerance: 1.5}}\n"), &["replan.capacity_tolerance", "got 1.5"]);
+    refused(
+        "lift.yaml",
+        &format!("{BASE}lifts: [{{name: l, origin: hold, destination: hodl}}]\n"),
+        &["lifts[0] (l).destination", "'hodl'", "did you mean 'hold'"],
+    );
+    refused(
+        "clearance.yaml",
+        &format!("{BASE}objective: {{clearance_m: 2}}\n"),
+        &["objective.clearance_m", "got 2"],
+    );
+    refused(
+        "replan.yaml",
+        &format!("{BASE}replan: {{every_cycles: 0}}\n"),
+        &["replan.every_cycles"],
+    );
+    refused(
+        "tolerance.yaml",
+        &format!("{BASE}replan: {{capacity_tolerance: 1.5}}\n"),
+        &["replan.capacity_tolerance", "got 1.5"],
+    );
 }
 
 /// The task of the out-of-reach tests: one right-hand phase with the target `x_m` ahead.
@@ -228,21 +457,41 @@ fn a_target_out_of_reach_gives_the_nearest_posture_and_says_so() {
     assert_eq!(m.links[st.feet[1].link].name, "r_foot");
     let ankle = st.world_from_foot[1].translation.vector;
     let lower = (target - ankle).norm() - reach;
-    assert!(lower > 0.3, "the target must be beyond any posture: {lower}");
+    assert!(
+        lower > 0.3,
+        "the target must be beyond any posture: {lower}"
+    );
     // a simple posture that any plan should beat: upright, right arm raised straight forward
     let mut forward = zero.clone();
     forward[m.q_index("r_shoulder_flexion").unwrap()] = std::f64::consts::FRAC_PI_2;
     let upper = (target - grip(&t, &forward)).norm();
-    assert!((grip(&t, &forward) - grip(&t, &zero)).x > 0.5, "the arm points forward");
+    assert!(
+        (grip(&t, &forward) - grip(&t, &zero)).x > 0.5,
+        "the arm points forward"
+    );
 
     let p = plan(&t);
     let ph = &p.summary.phases[0];
-    assert!(!ph.reachable, "a target {lower:.2} m beyond reach is reported reachable");
-    assert!(ph.hand_error_m >= lower, "hand error {} below the bound {lower}", ph.hand_error_m);
-    assert!(ph.hand_error_m < upper, "hand error {} not better than the arm held forward ({upper})", ph.hand_error_m);
+    assert!(
+        !ph.reachable,
+        "a target {lower:.2} m beyond reach is reported reachable"
+    );
+    assert!(
+        ph.hand_error_m >= lower,
+        "hand error {} below the bound {lower}",
+        ph.hand_error_m
+    );
+    assert!(
+        ph.hand_error_m < upper,
+        "hand error {} not better than the arm held forward ({upper})",
+        ph.hand_error_m
+    );
     // the error is the distance from the target to where the posture puts the hand
     let at = grip(&t, &ph.q_rad);
-    assert!(((target - at).norm() - ph.hand_error_m).abs() < 1e-6, "{at:?}");
+    assert!(
+        ((target - at).norm() - ph.hand_error_m).abs() < 1e-6,
+        "{at:?}"
+    );
     // the plan's posture for the phase is that posture, and the summary says so in words
     let a = posture_opt::assess::assess(&t, &p, 0.7);
     let text = posture_opt::report::text::plan_summary(&t, &p, &a);
@@ -264,9 +513,16 @@ fn the_nearest_posture_keeps_the_feet_and_the_balance() {
         pw.statics(&t, &ph.q_rad, &[Vector3::zeros(); 2]);
         for i in 0..2 {
             let slid = pw.foot_error(&t, i).0.norm();
-            assert!(slid < 1e-3, "target {x} m ahead: foot {i} slid {slid} m off its stance");
+            assert!(
+                slid < 1e-3,
+                "target {x} m ahead: foot {i} slid {slid} m off its stance"
+            );
         }
         let margin = ph.balance_margin_m.unwrap();
-        assert!(margin > -1e-3, "target {x} m ahead: balance margin {margin} m (reachable: {})", ph.reachable);
+        assert!(
+            margin > -1e-3,
+            "target {x} m ahead: balance margin {margin} m (reachable: {})",
+            ph.reachable
+        );
     }
 }

@@ -20,20 +20,30 @@ use serde_json::Value;
 use std::collections::HashMap;
 
 fn reference() -> Value {
-    let path = format!("{}/tests/data/fatigue/three_compartment_reference.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/fatigue/three_compartment_reference.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 /// Frey-Law et al. (2012) Tables 1 and 2, by joint.
 fn tables() -> HashMap<String, HashMap<String, f64>> {
-    let path = format!("{}/tests/data/fatigue/literature/frey_law_2012_tables.csv", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/fatigue/literature/frey_law_2012_tables.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     lines
         .map(|l| {
             let cells: Vec<&str> = l.split(',').collect();
-            let values = header[1..].iter().zip(&cells[1..]).map(|(h, v)| (h.to_string(), v.parse().unwrap())).collect();
+            let values = header[1..]
+                .iter()
+                .zip(&cells[1..])
+                .map(|(h, v)| (h.to_string(), v.parse().unwrap()))
+                .collect();
             (cells[0].to_string(), values)
         })
         .collect()
@@ -68,11 +78,18 @@ fn parameters_are_the_published_ones() {
     let t = tables();
     for region in Region::ALL {
         let row = &t[region.name()];
-        assert_eq!(region.frey_law_2012_f_r_per_s(), (row["F_per_s"], row["R_per_s"]), "{region:?}");
+        assert_eq!(
+            region.frey_law_2012_f_r_per_s(),
+            (row["F_per_s"], row["R_per_s"]),
+            "{region:?}"
+        );
         let m = ThreeCompartment::for_region(region);
         assert_eq!((m.ld_per_s, m.lr_per_s), (10.0, 10.0));
         // Looft et al. (2018), Looft & Frey-Law (2020): r = 30 for the hand, 15 elsewhere
-        assert_eq!(m.rest_multiplier, if region == Region::Grip { 30.0 } else { 15.0 });
+        assert_eq!(
+            m.rest_multiplier,
+            if region == Region::Grip { 30.0 } else { 15.0 }
+        );
     }
 }
 
@@ -89,7 +106,10 @@ fn simulated_endurance_matches_the_exact_model() {
             for (f, et) in loads.iter().zip(j[grid]["model_et_s"].as_array().unwrap()) {
                 let (f, et) = (num(f), num(et));
                 let sim = simulated_et_s(&m, f);
-                assert!((sim / et - 1.0).abs() < 1e-4, "{region:?} {f}: {sim} vs {et}");
+                assert!(
+                    (sim / et - 1.0).abs() < 1e-4,
+                    "{region:?} {f}: {sim} vs {et}"
+                );
             }
         }
     }
@@ -106,12 +126,19 @@ fn closed_form_endurance() {
         let (f_, r_) = region.frey_law_2012_f_r_per_s();
         for grid in ["10-90", "15-95"] {
             let loads = r["grids_fmvc"][grid].as_array().unwrap();
-            for (tl, et) in loads.iter().zip(r["joints"][region.name()][grid]["model_et_s"].as_array().unwrap()) {
+            for (tl, et) in loads.iter().zip(
+                r["joints"][region.name()][grid]["model_et_s"]
+                    .as_array()
+                    .unwrap(),
+            ) {
                 let (tl, et) = (num(tl), num(et));
                 let by_hand = -(1.0 - r_ * (1.0 - tl) / (f_ * tl)).ln() / r_;
                 let closed = m.endurance_time_s(tl).unwrap();
                 assert!((closed / by_hand - 1.0).abs() < 1e-12);
-                assert!((closed - et).abs() < 0.02 * et + 0.15, "{region:?} {tl}: {closed} vs {et}");
+                assert!(
+                    (closed - et).abs() < 0.02 * et + 0.15,
+                    "{region:?} {tl}: {closed} vs {et}"
+                );
             }
         }
         assert_eq!(m.endurance_time_s(0.0), None);
@@ -137,7 +164,12 @@ fn table2_statistic_reproduces_for_five_joints() {
             ("10-90", "rms_10_90_s", "mean_rel_10_90_pct", 0.25, 2.0),
             ("15-95", "rms_15_95_s", "mean_rel_15_95_pct", 0.75, 4.0),
         ] {
-            let loads: Vec<f64> = r["grids_fmvc"][grid].as_array().unwrap().iter().map(num).collect();
+            let loads: Vec<f64> = r["grids_fmvc"][grid]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(num)
+                .collect();
             let n = loads.len() as f64;
             let (mut sq, mut rel) = (0.0, 0.0);
             for &f in &loads {
@@ -152,14 +184,23 @@ fn table2_statistic_reproduces_for_five_joints() {
             match region {
                 Region::Knee | Region::General => {
                     if grid == "10-90" {
-                        assert!((s - paper).abs() > 1.5, "{region:?} {grid}: {s} vs {paper} reproduces after all");
+                        assert!(
+                            (s - paper).abs() > 1.5,
+                            "{region:?} {grid}: {s} vs {paper} reproduces after all"
+                        );
                     }
                 }
                 _ => {
-                    assert!((s - paper).abs() <= tol, "{region:?} {grid}: S = {s} vs Table 2 {paper}");
+                    assert!(
+                        (s - paper).abs() <= tol,
+                        "{region:?} {grid}: S = {s} vs Table 2 {paper}"
+                    );
                     if region != Region::Grip {
                         let paper_rel = published[rel_key];
-                        assert!((mean_rel - paper_rel).abs() <= rel_tol, "{region:?} {grid}: {mean_rel} % vs {paper_rel} %");
+                        assert!(
+                            (mean_rel - paper_rel).abs() <= rel_tol,
+                            "{region:?} {grid}: {mean_rel} % vs {paper_rel} %"
+                        );
                     }
                 }
             }
@@ -186,8 +227,16 @@ fn rms_against_the_2010_curves() {
             })
             .sum();
         assert!(((sq / 9.0).sqrt() - expected).abs() < 0.05, "{region:?}");
-        let anchor = v.frey_law_avin.iter().find(|a| a.region == region.name()).unwrap();
-        assert!((anchor.three_compartment_rms_s - expected).abs() < 0.2, "{region:?}: {} vs {expected}", anchor.three_compartment_rms_s);
+        let anchor = v
+            .frey_law_avin
+            .iter()
+            .find(|a| a.region == region.name())
+            .unwrap();
+        assert!(
+            (anchor.three_compartment_rms_s - expected).abs() < 0.2,
+            "{region:?}: {} vs {expected}",
+            anchor.three_compartment_rms_s
+        );
         assert!(expected > 2.0 * t_paper(region), "{region:?}");
     }
 }
@@ -211,12 +260,19 @@ fn sustainable_load_is_the_published_asymptote() {
                 m.hold(&mut s, tl, 600.0);
                 lowest = lowest.min(s.capacity());
             }
-            assert_eq!(lowest >= tl, holds, "{region:?} at {tl}: lowest capacity {lowest}");
+            assert_eq!(
+                lowest >= tl,
+                holds,
+                "{region:?} at {tl}: lowest capacity {lowest}"
+            );
         }
         // the L → ∞ asymptote R/(F + R), by hand, lies within 0.03 %MVC below the observed one
         let (f_, r_) = region.frey_law_2012_f_r_per_s();
         let limit = r_ / (f_ + r_);
-        assert!(asymptote - limit > 0.0 && asymptote - limit < 0.0003, "{region:?}: {limit}");
+        assert!(
+            asymptote - limit > 0.0 && asymptote - limit < 0.0003,
+            "{region:?}: {limit}"
+        );
         assert_eq!(m.endurance_time_s(limit * 0.999), None);
     }
 }
@@ -226,18 +282,27 @@ fn integrate(m: &ThreeCompartment, y0: [f64; 3], u0: f64, tl: f64, dt_s: f64) ->
     let deriv = |y: [f64; 3]| {
         let [ma, mr, mf] = y;
         let c = if ma < tl {
-            if mr > tl - ma { m.ld_per_s * (tl - ma) } else { m.ld_per_s * mr }
+            if mr > tl - ma {
+                m.ld_per_s * (tl - ma)
+            } else {
+                m.ld_per_s * mr
+            }
         } else {
             m.lr_per_s * (tl - ma)
         };
-        let r = if tl > 0.0 { m.r_per_s } else { m.r_per_s * m.rest_multiplier };
+        let r = if tl > 0.0 {
+            m.r_per_s
+        } else {
+            m.r_per_s * m.rest_multiplier
+        };
         [c - m.f_per_s * ma, -c + r * mf, m.f_per_s * ma - r * mf]
     };
     let du = |y: [f64; 3]| tl / ((y[0] + y[1]) * (y[0] + y[1])) / 60.0;
     let n = (dt_s / 1e-3).round() as usize;
     let h = dt_s / n as f64;
     let (mut y, mut u) = (y0, u0);
-    let add = |a: [f64; 3], k: [f64; 3], s: f64| [a[0] + s * k[0], a[1] + s * k[1], a[2] + s * k[2]];
+    let add =
+        |a: [f64; 3], k: [f64; 3], s: f64| [a[0] + s * k[0], a[1] + s * k[1], a[2] + s * k[2]];
     for _ in 0..n {
         let k1 = deriv(y);
         let y2 = add(y, k1, h / 2.0);
@@ -264,16 +329,31 @@ fn hold_matches_integration_over_a_history() {
         let mut s = m.fresh();
         let mut y = [0.0, 1.0, 0.0];
         let mut u = 0.0;
-        for &(tl, dt) in &[(0.4, 60.0), (0.2, 30.0), (0.0, 120.0), (0.7, 45.0), (0.95, 30.0), (0.1, 20.0), (0.0, 300.0)] {
+        for &(tl, dt) in &[
+            (0.4, 60.0),
+            (0.2, 30.0),
+            (0.0, 120.0),
+            (0.7, 45.0),
+            (0.95, 30.0),
+            (0.1, 20.0),
+            (0.0, 300.0),
+        ] {
             let before = m.capacity(&s);
             m.hold(&mut s, tl, dt);
             let (y1, u1) = integrate(&m, y, u, tl, dt);
             y = y1;
             u = u1;
             for (got, want) in [s.ma, s.mr, s.mf].iter().zip(y) {
-                assert!((got - want).abs() < 1e-7, "{region:?} TL {tl}: {got} vs {want}");
+                assert!(
+                    (got - want).abs() < 1e-7,
+                    "{region:?} TL {tl}: {got} vs {want}"
+                );
             }
-            assert!((s.fatigue_u_min - u).abs() <= 1e-7 * u.max(1.0), "{region:?} TL {tl}: U {} vs {u}", s.fatigue_u_min);
+            assert!(
+                (s.fatigue_u_min - u).abs() <= 1e-7 * u.max(1.0),
+                "{region:?} TL {tl}: U {} vs {u}",
+                s.fatigue_u_min
+            );
             assert!((s.ma + s.mr + s.mf - 1.0).abs() < 1e-12);
             assert!(s.ma >= 0.0 && s.mr >= 0.0 && s.mf >= 0.0);
             if tl == 0.0 {
@@ -296,6 +376,10 @@ fn rest_recovery_uses_the_multiplier() {
         let mf0 = s.mf;
         m.hold(&mut s, 0.0, 60.0);
         let expected = mf0 * (-m.rest_multiplier * m.r_per_s * 60.0).exp();
-        assert!((s.mf / expected - 1.0).abs() < 1e-3, "{region:?}: {} vs {expected}", s.mf);
+        assert!(
+            (s.mf / expected - 1.0).abs() < 1e-3,
+            "{region:?}: {} vs {expected}",
+            s.mf
+        );
     }
 }

@@ -14,8 +14,8 @@ use nalgebra::Vector3;
 use posture_opt::body::strength::HalfJoint;
 use posture_opt::body::worker::{JOINTS, PELVIS_JOINTS, RANGES_DEG};
 use posture_opt::body::{
-    forward_kinematics, holding_torques, mass_moments, resolve_half_joints, worker_urdf, BodyModel,
-    Direction, Sex, StaticsData, StrengthTable, Worker, GRAVITY_M_S2,
+    BodyModel, Direction, GRAVITY_M_S2, Sex, StaticsData, StrengthTable, Worker,
+    forward_kinematics, holding_torques, mass_moments, resolve_half_joints, worker_urdf,
 };
 
 const Z95: f64 = 1.6448536269514722;
@@ -187,7 +187,12 @@ fn segment_masses_lengths_and_centres_of_mass_follow_de_leva() {
             MASS_TOL,
             "trunk (upper + middle) mass",
         );
-        near(p.mass("pelvis"), mass(&t.lower_trunk), MASS_TOL, "pelvis (lower trunk) mass");
+        near(
+            p.mass("pelvis"),
+            mass(&t.lower_trunk),
+            MASS_TOL,
+            "pelvis (lower trunk) mass",
+        );
         for side in ["r_", "l_"] {
             for (link, g) in [
                 ("upper_arm", &t.upper_arm),
@@ -197,40 +202,115 @@ fn segment_masses_lengths_and_centres_of_mass_follow_de_leva() {
                 ("shank", &t.shank),
                 ("foot", &t.foot),
             ] {
-                near(p.mass(&format!("{side}{link}")), mass(g), MASS_TOL, &format!("{side}{link} mass"));
+                near(
+                    p.mass(&format!("{side}{link}")),
+                    mass(g),
+                    MASS_TOL,
+                    &format!("{side}{link} mass"),
+                );
             }
             let at = |j: &str| p.joint_at(&format!("{side}{j}"));
             // lengths between joint centres, upright at q = 0
-            let (sh, el, wr) = (at("shoulder_flexion"), at("elbow_flexion"), at("wrist_flexion"));
-            let (hip, knee, ankle) = (at("hip_flexion"), at("knee_flexion"), at("ankle_dorsiflexion"));
-            near((sh - el).norm(), len(&t.upper_arm), POS_TOL, "upper arm length");
+            let (sh, el, wr) = (
+                at("shoulder_flexion"),
+                at("elbow_flexion"),
+                at("wrist_flexion"),
+            );
+            let (hip, knee, ankle) = (
+                at("hip_flexion"),
+                at("knee_flexion"),
+                at("ankle_dorsiflexion"),
+            );
+            near(
+                (sh - el).norm(),
+                len(&t.upper_arm),
+                POS_TOL,
+                "upper arm length",
+            );
             near((el - wr).norm(), len(&t.forearm), POS_TOL, "forearm length");
             near((hip - knee).norm(), len(&t.thigh), POS_TOL, "thigh length");
-            near((knee - ankle).norm(), len(&t.shank), POS_TOL, "shank length");
+            near(
+                (knee - ankle).norm(),
+                len(&t.shank),
+                POS_TOL,
+                "shank length",
+            );
             // segments hang straight down; CM at its fraction from the proximal end
             let com = |l: &str| p.com(&format!("{side}{l}"));
-            near(com("upper_arm").z, sh.z - t.upper_arm.cm_pct / 100.0 * len(&t.upper_arm), POS_TOL, "upper arm CM");
-            near(com("forearm").z, el.z - t.forearm.cm_pct / 100.0 * len(&t.forearm), POS_TOL, "forearm CM");
-            near(com("hand").z, wr.z - t.hand.cm_pct / 100.0 * len(&t.hand), POS_TOL, "hand CM");
-            near(com("thigh").z, hip.z - t.thigh.cm_pct / 100.0 * len(&t.thigh), POS_TOL, "thigh CM");
-            near(com("shank").z, knee.z - t.shank.cm_pct / 100.0 * len(&t.shank), POS_TOL, "shank CM");
+            near(
+                com("upper_arm").z,
+                sh.z - t.upper_arm.cm_pct / 100.0 * len(&t.upper_arm),
+                POS_TOL,
+                "upper arm CM",
+            );
+            near(
+                com("forearm").z,
+                el.z - t.forearm.cm_pct / 100.0 * len(&t.forearm),
+                POS_TOL,
+                "forearm CM",
+            );
+            near(
+                com("hand").z,
+                wr.z - t.hand.cm_pct / 100.0 * len(&t.hand),
+                POS_TOL,
+                "hand CM",
+            );
+            near(
+                com("thigh").z,
+                hip.z - t.thigh.cm_pct / 100.0 * len(&t.thigh),
+                POS_TOL,
+                "thigh CM",
+            );
+            near(
+                com("shank").z,
+                knee.z - t.shank.cm_pct / 100.0 * len(&t.shank),
+                POS_TOL,
+                "shank CM",
+            );
             // the foot: a box heel to toe tip, CM from the heel
             let f = p.link(&format!("{side}foot"));
             let b = p.m.links[f].boxes[0];
-            near(2.0 * b.half_extents_m.x, len(&t.foot), SHAPE_TOL, "foot length");
-            let heel_x = p.d.link_point(&p.m, f, &(b.link_from_box * nalgebra::Point3::new(-b.half_extents_m.x, 0.0, 0.0)).coords).x;
-            near(com("foot").x, heel_x + t.foot.cm_pct / 100.0 * len(&t.foot), SHAPE_TOL, "foot CM");
+            near(
+                2.0 * b.half_extents_m.x,
+                len(&t.foot),
+                SHAPE_TOL,
+                "foot length",
+            );
+            let heel_x =
+                p.d.link_point(
+                    &p.m,
+                    f,
+                    &(b.link_from_box * nalgebra::Point3::new(-b.half_extents_m.x, 0.0, 0.0))
+                        .coords,
+                )
+                .x;
+            near(
+                com("foot").x,
+                heel_x + t.foot.cm_pct / 100.0 * len(&t.foot),
+                SHAPE_TOL,
+                "foot CM",
+            );
         }
         // head and trunk: C7 (the neck joint) one head length below the vertex, which is at
         // stature height; trunk segments stacked from the hip joint centres (MIDH) up
         let c7 = p.joint_at("neck_flexion");
         near(c7.z, w.stature_m - len(&t.head), POS_TOL, "C7 height");
-        near(p.com("head").z, w.stature_m - t.head.cm_pct / 100.0 * len(&t.head), POS_TOL, "head CM");
+        near(
+            p.com("head").z,
+            w.stature_m - t.head.cm_pct / 100.0 * len(&t.head),
+            POS_TOL,
+            "head CM",
+        );
         let midh = (p.joint_at("r_hip_flexion") + p.joint_at("l_hip_flexion")) / 2.0;
         let omph = midh.z + len(&t.lower_trunk);
         let xiph = omph + len(&t.middle_trunk);
         let supr = xiph + len(&t.upper_trunk);
-        near(p.com("pelvis").z, omph - t.lower_trunk.cm_pct / 100.0 * len(&t.lower_trunk), POS_TOL, "lower trunk CM");
+        near(
+            p.com("pelvis").z,
+            omph - t.lower_trunk.cm_pct / 100.0 * len(&t.lower_trunk),
+            POS_TOL,
+            "lower trunk CM",
+        );
         let (mu, mm) = (t.upper_trunk.mass_pct, t.middle_trunk.mass_pct);
         let trunk_cm = (mu * (supr - t.upper_trunk.cm_pct / 100.0 * len(&t.upper_trunk))
             + mm * (xiph - t.middle_trunk.cm_pct / 100.0 * len(&t.middle_trunk)))
@@ -238,7 +318,11 @@ fn segment_masses_lengths_and_centres_of_mass_follow_de_leva() {
         near(p.com("trunk").z, trunk_cm, POS_TOL, "trunk CM");
         // the shoulders sit below SUPR (an assumption of the generator, 1.8 % of stature)
         let sh = p.joint_at("r_shoulder_flexion");
-        assert!(sh.z < supr && sh.z > supr - 0.05 * w.stature_m, "{who}: shoulder {} vs SUPR {supr}", sh.z);
+        assert!(
+            sh.z < supr && sh.z > supr - 0.05 * w.stature_m,
+            "{who}: shoulder {} vs SUPR {supr}",
+            sh.z
+        );
     }
 }
 
@@ -253,12 +337,20 @@ fn stature_is_the_head_top_and_the_feet_stand_flat_on_the_floor() {
             .iter()
             .flat_map(|c| [c.a, c.b].map(|e| p.d.link_point(&p.m, h, &e.coords).z + c.radius_m))
             .fold(f64::NEG_INFINITY, f64::max);
-        assert!((top - w.stature_m).abs() < SHAPE_TOL, "{who}: head top {top} vs stature {}", w.stature_m);
+        assert!(
+            (top - w.stature_m).abs() < SHAPE_TOL,
+            "{who}: head top {top} vs stature {}",
+            w.stature_m
+        );
         // nothing is higher than the head
         for (l, link) in p.m.links.iter().enumerate() {
             for c in &link.capsules {
                 for e in [c.a, c.b] {
-                    assert!(p.d.link_point(&p.m, l, &e.coords).z + c.radius_m <= top + 1e-9, "{who}: {}", link.name);
+                    assert!(
+                        p.d.link_point(&p.m, l, &e.coords).z + c.radius_m <= top + 1e-9,
+                        "{who}: {}",
+                        link.name
+                    );
                 }
             }
         }
@@ -267,10 +359,17 @@ fn stature_is_the_head_top_and_the_feet_stand_flat_on_the_floor() {
             let (rot, _) = p.d.link_pose(&p.m, f);
             let b = p.m.links[f].boxes[0];
             let box_rot = rot * b.link_from_box.rotation.to_rotation_matrix().matrix();
-            assert!((box_rot - nalgebra::Matrix3::identity()).norm() < 1e-12, "{who}: {foot} is level");
+            assert!(
+                (box_rot - nalgebra::Matrix3::identity()).norm() < 1e-12,
+                "{who}: {foot} is level"
+            );
             for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
                 let corner = b.link_from_box
-                    * nalgebra::Point3::new(sx * b.half_extents_m.x, sy * b.half_extents_m.y, -b.half_extents_m.z);
+                    * nalgebra::Point3::new(
+                        sx * b.half_extents_m.x,
+                        sy * b.half_extents_m.y,
+                        -b.half_extents_m.z,
+                    );
                 let z = p.d.link_point(&p.m, f, &corner.coords).z;
                 assert!(z.abs() < SHAPE_TOL, "{who}: {foot} sole corner at z = {z}");
             }
@@ -283,18 +382,33 @@ fn stature_is_the_head_top_and_the_feet_stand_flat_on_the_floor() {
 /// each midline link stays on it, and the twins hold the same torques.
 #[test]
 fn the_left_side_mirrors_the_right() {
-    let sagittal = ["pelvis_tx", "pelvis_tz", "pelvis_tilt", "lumbar_flexion", "neck_flexion"];
+    let sagittal = [
+        "pelvis_tx",
+        "pelvis_tz",
+        "pelvis_tilt",
+        "lumbar_flexion",
+        "neck_flexion",
+    ];
     for (who, w) in population() {
         let m = generate(&w);
         let mut q = vec![0.0; m.nq()];
         for k in 0..m.nq() {
             let name = m.q_joint(k).name.clone();
             // a fixed pseudo-random angle per joint name, inside the joint's range
-            let h = name.trim_start_matches("r_").trim_start_matches("l_").bytes().fold(7u64, |a, b| a.wrapping_mul(31).wrapping_add(b as u64));
+            let h = name
+                .trim_start_matches("r_")
+                .trim_start_matches("l_")
+                .bytes()
+                .fold(7u64, |a, b| a.wrapping_mul(31).wrapping_add(b as u64));
             let u = (h % 1000) as f64 / 1000.0;
             let j = m.q_joint(k);
-            if name.starts_with("r_") || name.starts_with("l_") || sagittal.contains(&name.as_str()) {
-                q[k] = if j.kind == posture_opt::body::JointKind::Prismatic { 0.1 * (u - 0.5) } else { j.lower_rad + u * (j.upper_rad - j.lower_rad) };
+            if name.starts_with("r_") || name.starts_with("l_") || sagittal.contains(&name.as_str())
+            {
+                q[k] = if j.kind == posture_opt::body::JointKind::Prismatic {
+                    0.1 * (u - 0.5)
+                } else {
+                    j.lower_rad + u * (j.upper_rad - j.lower_rad)
+                };
             }
         }
         let mut d = StaticsData::new(&m, 0);
@@ -305,14 +419,27 @@ fn the_left_side_mirrors_the_right() {
             if let Some(rest) = link.name.strip_prefix("r_") {
                 let twin = m.frame_link(&format!("l_{rest}")).unwrap();
                 let (rot2, pos2) = d.link_pose(&m, twin);
-                assert!((pos2 - mirror(pos)).norm() < 1e-12, "{who}: {} at {pos2} vs mirror {}", m.links[twin].name, mirror(pos));
+                assert!(
+                    (pos2 - mirror(pos)).norm() < 1e-12,
+                    "{who}: {} at {pos2} vs mirror {}",
+                    m.links[twin].name,
+                    mirror(pos)
+                );
                 assert_eq!(m.links[twin].mass_kg, link.mass_kg);
                 let com = d.link_point(&m, l, &link.com_m.coords);
                 let com2 = d.link_point(&m, twin, &m.links[twin].com_m.coords);
-                assert!((com2 - mirror(com)).norm() < 1e-12, "{who}: CoM of {}", m.links[twin].name);
+                assert!(
+                    (com2 - mirror(com)).norm() < 1e-12,
+                    "{who}: CoM of {}",
+                    m.links[twin].name
+                );
                 // orientation: reflected, R' = S R S with S = diag(1, −1, 1)
                 let sm = nalgebra::Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, 1.0));
-                assert!((rot2 - sm * rot * sm).norm() < 1e-12, "{who}: {} orientation", m.links[twin].name);
+                assert!(
+                    (rot2 - sm * rot * sm).norm() < 1e-12,
+                    "{who}: {} orientation",
+                    m.links[twin].name
+                );
             } else if !link.name.starts_with("l_") {
                 assert!(pos.y.abs() < 1e-12, "{who}: {} off the midline", link.name);
             }
@@ -322,9 +449,18 @@ fn the_left_side_mirrors_the_right() {
             let name = &m.q_joint(k).name;
             if let Some(rest) = name.strip_prefix("r_") {
                 let twin = m.q_index(&format!("l_{rest}")).unwrap();
-                assert!((d.tau_nm[twin] - d.tau_nm[k]).abs() < 1e-9, "{who}: {name} {} vs l_{rest} {}", d.tau_nm[k], d.tau_nm[twin]);
+                assert!(
+                    (d.tau_nm[twin] - d.tau_nm[k]).abs() < 1e-9,
+                    "{who}: {name} {} vs l_{rest} {}",
+                    d.tau_nm[k],
+                    d.tau_nm[twin]
+                );
                 let (a, b) = (m.q_joint(k), m.q_joint(twin));
-                assert_eq!((a.lower_rad, a.upper_rad), (b.lower_rad, b.upper_rad), "{who}: {name} range");
+                assert_eq!(
+                    (a.lower_rad, a.upper_rad),
+                    (b.lower_rad, b.upper_rad),
+                    "{who}: {name} range"
+                );
             }
         }
     }
@@ -332,12 +468,17 @@ fn the_left_side_mirrors_the_right() {
 
 #[test]
 fn the_shipped_worker_is_the_generated_50th_percentile_man() {
-    let shipped = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf")).unwrap();
+    let shipped =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/worker.urdf"))
+            .unwrap();
     // the file says who it is
     assert!(shipped.contains("male, stature 1.755 m, mass 78 kg, strength percentile 50"));
     let generated = worker_urdf(&Worker::MALE_50, &StrengthTable::default_table()).unwrap();
     if generated != shipped {
-        let line = generated.lines().zip(shipped.lines()).position(|(a, b)| a != b);
+        let line = generated
+            .lines()
+            .zip(shipped.lines())
+            .position(|(a, b)| a != b);
         panic!(
             "robots/worker.urdf is not what `posture-opt robot` generates for the 50th-percentile man \
              (regenerate it with `posture-opt robot --sex male --stature-m 1.755 --mass-kg 78 --out robots/worker.urdf`); \
@@ -348,7 +489,14 @@ fn the_shipped_worker_is_the_generated_50th_percentile_man() {
         );
     }
     assert_eq!(Worker::MALE_50.sex, Sex::Male);
-    assert_eq!((Worker::MALE_50.stature_m, Worker::MALE_50.mass_kg, Worker::MALE_50.strength_percentile), (1.755, 78.0, 50.0));
+    assert_eq!(
+        (
+            Worker::MALE_50.stature_m,
+            Worker::MALE_50.mass_kg,
+            Worker::MALE_50.strength_percentile
+        ),
+        (1.755, 78.0, 50.0)
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -357,13 +505,13 @@ fn the_shipped_worker_is_the_generated_50th_percentile_man() {
 // ---------------------------------------------------------------------------------------------
 
 const AAOS_DEG: [(&str, f64, f64); 19] = [
-    ("lumbar_flexion", -25.0, 80.0),         // thoracolumbar flexion 80, extension 25
+    ("lumbar_flexion", -25.0, 80.0), // thoracolumbar flexion 80, extension 25
     ("lumbar_lateral_bending", -35.0, 35.0), // thoracolumbar lateral bending 35 each side
-    ("lumbar_axial_rotation", -45.0, 45.0),  // thoracolumbar rotation 45 each side
-    ("neck_flexion", -45.0, 45.0),           // cervical flexion 45, extension 45
-    ("neck_lateral_bending", -45.0, 45.0),   // cervical lateral bending 45
-    ("neck_axial_rotation", -60.0, 60.0),    // cervical rotation 60
-    ("shoulder_flexion", -60.0, 180.0),      // flexion 180, extension 60
+    ("lumbar_axial_rotation", -45.0, 45.0), // thoracolumbar rotation 45 each side
+    ("neck_flexion", -45.0, 45.0),   // cervical flexion 45, extension 45
+    ("neck_lateral_bending", -45.0, 45.0), // cervical lateral bending 45
+    ("neck_axial_rotation", -60.0, 60.0), // cervical rotation 60
+    ("shoulder_flexion", -60.0, 180.0), // flexion 180, extension 60
     // abduction 180; adduction −30 is the project's ASSUMPTION (the arm meets the trunk in the
     // frontal plane; AAOS's 75° adduction is measured across the front of the body)
     ("shoulder_abduction", -30.0, 180.0),
@@ -383,7 +531,10 @@ const AAOS_DEG: [(&str, f64, f64); 19] = [
 #[test]
 fn joint_ranges_are_the_aaos_table() {
     for (joint, lo, hi) in AAOS_DEG {
-        let r = RANGES_DEG.iter().find(|r| r.0 == joint).unwrap_or_else(|| panic!("{joint} in RANGES_DEG"));
+        let r = RANGES_DEG
+            .iter()
+            .find(|r| r.0 == joint)
+            .unwrap_or_else(|| panic!("{joint} in RANGES_DEG"));
         assert_eq!((r.1, r.2), (lo, hi), "RANGES_DEG {joint}");
     }
     for (who, w) in population() {
@@ -396,10 +547,23 @@ fn joint_ranges_are_the_aaos_table() {
                 continue;
             }
             let base = j.name.trim_start_matches("r_").trim_start_matches("l_");
-            let (_, lo, hi) = AAOS_DEG.iter().find(|r| r.0 == base).unwrap_or_else(|| panic!("{who}: {} has no AAOS range", j.name));
+            let (_, lo, hi) = AAOS_DEG
+                .iter()
+                .find(|r| r.0 == base)
+                .unwrap_or_else(|| panic!("{who}: {} has no AAOS range", j.name));
             // the URDF prints radians to 1e-6
-            assert!((j.lower_rad - lo.to_radians()).abs() < 1e-6, "{who}: {} lower {}", j.name, j.lower_rad.to_degrees());
-            assert!((j.upper_rad - hi.to_radians()).abs() < 1e-6, "{who}: {} upper {}", j.name, j.upper_rad.to_degrees());
+            assert!(
+                (j.lower_rad - lo.to_radians()).abs() < 1e-6,
+                "{who}: {} lower {}",
+                j.name,
+                j.lower_rad.to_degrees()
+            );
+            assert!(
+                (j.upper_rad - hi.to_radians()).abs() < 1e-6,
+                "{who}: {} upper {}",
+                j.name,
+                j.upper_rad.to_degrees()
+            );
         }
     }
 }
@@ -413,44 +577,340 @@ fn joint_ranges_are_the_aaos_table() {
 type Row = (&'static str, &'static str, f64, f64, f64, f64, &'static str);
 
 const STRENGTH: [Row; 38] = [
-    ("lumbar_flexion", "+", 128.0, 45.0, 64.0, 22.5, "ASSUMPTION on Kahanovitz et al. 1987 Spine 12:105 (women 19-109 N m); men = women / 0.5 (NIOSHTIC-2 00178484)"),
-    ("lumbar_flexion", "-", 206.0, 66.0, 103.0, 32.5, "ASSUMPTION on Kahanovitz et al. 1987 (women 38-168 N m); men = women / 0.5"),
-    ("lumbar_lateral_bending", "+", 140.0, 45.0, 75.0, 24.0, "ASSUMPTION (engineering estimate)"),
-    ("lumbar_lateral_bending", "-", 140.0, 45.0, 75.0, 24.0, "ASSUMPTION (engineering estimate)"),
-    ("lumbar_axial_rotation", "+", 80.0, 26.0, 45.0, 14.0, "ASSUMPTION (engineering estimate)"),
-    ("lumbar_axial_rotation", "-", 80.0, 26.0, 45.0, 14.0, "ASSUMPTION (engineering estimate)"),
-    ("neck_flexion", "+", 24.0, 4.8, 16.6, 4.5, "Cagnie et al. 2007 Arch Phys Med Rehabil 88:1441; SD from Fice et al. 2014, Salo et al. 2006"),
-    ("neck_flexion", "-", 36.4, 7.9, 26.5, 4.3, "Cagnie et al. 2007; SD from Fice et al. 2014, Salo et al. 2006"),
-    ("neck_lateral_bending", "+", 24.2, 6.8, 17.2, 4.8, "DERIVED from Fice et al. 2014 Ann Biomed Eng 42:1746 and Cagnie et al. 2007"),
-    ("neck_lateral_bending", "-", 24.2, 6.8, 17.2, 4.8, "DERIVED from Fice et al. 2014 and Cagnie et al. 2007"),
-    ("neck_axial_rotation", "+", 11.3, 4.3, 8.0, 2.3, "Salo et al. 2006 J Orthop Sports Phys Ther 36:495 (women); men DERIVED"),
-    ("neck_axial_rotation", "-", 11.3, 4.3, 8.0, 2.3, "Salo et al. 2006 (women); men DERIVED"),
-    ("shoulder_flexion", "+", 89.9, 27.0, 45.0, 13.5, "KIN-COM shoulder flexion study (26 M, 25 F), static 89.9 N m at 0 deg; women 0.5 x men"),
-    ("shoulder_flexion", "-", 112.4, 33.7, 56.2, 16.9, "DERIVED: flexors x 1.25 (Ivey et al. 1985 Arch Phys Med Rehabil 66:384)"),
-    ("shoulder_abduction", "+", 74.4, 22.3, 35.0, 10.5, "Holzbaur et al. 2007 J Biomech 40:2442"),
-    ("shoulder_abduction", "-", 93.7, 28.1, 42.1, 12.6, "Holzbaur et al. 2007"),
-    ("shoulder_rotation", "+", 50.0, 15.0, 25.0, 7.5, "ASSUMPTION (Ivey et al. 1985 ratios)"),
-    ("shoulder_rotation", "-", 33.0, 10.0, 16.5, 5.0, "ASSUMPTION (IR:ER 3:2, Ivey et al. 1985)"),
-    ("elbow_flexion", "+", 77.0, 20.0, 41.0, 11.0, "Stobbe 1982 as tabulated in Chaffin, Andersson & Martin, Occupational Biomechanics"),
-    ("elbow_flexion", "-", 59.2, 15.4, 31.5, 8.5, "DERIVED: flexors / 1.3 (Holzbaur et al. 2007)"),
-    ("forearm_pronation", "+", 13.1, 3.9, 7.7, 2.3, "O'Sullivan & Gallwey 2002 J Electromyogr Kinesiol 12:275; women / 1.7 (Axelsson et al. 2018)"),
-    ("forearm_pronation", "-", 16.2, 4.9, 9.5, 2.9, "O'Sullivan & Gallwey 2002; women / 1.7 (Axelsson et al. 2018)"),
-    ("wrist_flexion", "+", 12.2, 3.7, 7.2, 2.2, "Delp, Grierson & Buchanan 1996 J Biomech 29:1371"),
+    (
+        "lumbar_flexion",
+        "+",
+        128.0,
+        45.0,
+        64.0,
+        22.5,
+        "ASSUMPTION on Kahanovitz et al. 1987 Spine 12:105 (women 19-109 N m); men = women / 0.5 (NIOSHTIC-2 00178484)",
+    ),
+    (
+        "lumbar_flexion",
+        "-",
+        206.0,
+        66.0,
+        103.0,
+        32.5,
+        "ASSUMPTION on Kahanovitz et al. 1987 (women 38-168 N m); men = women / 0.5",
+    ),
+    (
+        "lumbar_lateral_bending",
+        "+",
+        140.0,
+        45.0,
+        75.0,
+        24.0,
+        "ASSUMPTION (engineering estimate)",
+    ),
+    (
+        "lumbar_lateral_bending",
+        "-",
+        140.0,
+        45.0,
+        75.0,
+        24.0,
+        "ASSUMPTION (engineering estimate)",
+    ),
+    (
+        "lumbar_axial_rotation",
+        "+",
+        80.0,
+        26.0,
+        45.0,
+        14.0,
+        "ASSUMPTION (engineering estimate)",
+    ),
+    (
+        "lumbar_axial_rotation",
+        "-",
+        80.0,
+        26.0,
+        45.0,
+        14.0,
+        "ASSUMPTION (engineering estimate)",
+    ),
+    (
+        "neck_flexion",
+        "+",
+        24.0,
+        4.8,
+        16.6,
+        4.5,
+        "Cagnie et al. 2007 Arch Phys Med Rehabil 88:1441; SD from Fice et al. 2014, Salo et al. 2006",
+    ),
+    (
+        "neck_flexion",
+        "-",
+        36.4,
+        7.9,
+        26.5,
+        4.3,
+        "Cagnie et al. 2007; SD from Fice et al. 2014, Salo et al. 2006",
+    ),
+    (
+        "neck_lateral_bending",
+        "+",
+        24.2,
+        6.8,
+        17.2,
+        4.8,
+        "DERIVED from Fice et al. 2014 Ann Biomed Eng 42:1746 and Cagnie et al. 2007",
+    ),
+    (
+        "neck_lateral_bending",
+        "-",
+        24.2,
+        6.8,
+        17.2,
+        4.8,
+        "DERIVED from Fice et al. 2014 and Cagnie et al. 2007",
+    ),
+    (
+        "neck_axial_rotation",
+        "+",
+        11.3,
+        4.3,
+        8.0,
+        2.3,
+        "Salo et al. 2006 J Orthop Sports Phys Ther 36:495 (women); men DERIVED",
+    ),
+    (
+        "neck_axial_rotation",
+        "-",
+        11.3,
+        4.3,
+        8.0,
+        2.3,
+        "Salo et al. 2006 (women); men DERIVED",
+    ),
+    (
+        "shoulder_flexion",
+        "+",
+        89.9,
+        27.0,
+        45.0,
+        13.5,
+        "KIN-COM shoulder flexion study (26 M, 25 F), static 89.9 N m at 0 deg; women 0.5 x men",
+    ),
+    (
+        "shoulder_flexion",
+        "-",
+        112.4,
+        33.7,
+        56.2,
+        16.9,
+        "DERIVED: flexors x 1.25 (Ivey et al. 1985 Arch Phys Med Rehabil 66:384)",
+    ),
+    (
+        "shoulder_abduction",
+        "+",
+        74.4,
+        22.3,
+        35.0,
+        10.5,
+        "Holzbaur et al. 2007 J Biomech 40:2442",
+    ),
+    (
+        "shoulder_abduction",
+        "-",
+        93.7,
+        28.1,
+        42.1,
+        12.6,
+        "Holzbaur et al. 2007",
+    ),
+    (
+        "shoulder_rotation",
+        "+",
+        50.0,
+        15.0,
+        25.0,
+        7.5,
+        "ASSUMPTION (Ivey et al. 1985 ratios)",
+    ),
+    (
+        "shoulder_rotation",
+        "-",
+        33.0,
+        10.0,
+        16.5,
+        5.0,
+        "ASSUMPTION (IR:ER 3:2, Ivey et al. 1985)",
+    ),
+    (
+        "elbow_flexion",
+        "+",
+        77.0,
+        20.0,
+        41.0,
+        11.0,
+        "Stobbe 1982 as tabulated in Chaffin, Andersson & Martin, Occupational Biomechanics",
+    ),
+    (
+        "elbow_flexion",
+        "-",
+        59.2,
+        15.4,
+        31.5,
+        8.5,
+        "DERIVED: flexors / 1.3 (Holzbaur et al. 2007)",
+    ),
+    (
+        "forearm_pronation",
+        "+",
+        13.1,
+        3.9,
+        7.7,
+        2.3,
+        "O'Sullivan & Gallwey 2002 J Electromyogr Kinesiol 12:275; women / 1.7 (Axelsson et al. 2018)",
+    ),
+    (
+        "forearm_pronation",
+        "-",
+        16.2,
+        4.9,
+        9.5,
+        2.9,
+        "O'Sullivan & Gallwey 2002; women / 1.7 (Axelsson et al. 2018)",
+    ),
+    (
+        "wrist_flexion",
+        "+",
+        12.2,
+        3.7,
+        7.2,
+        2.2,
+        "Delp, Grierson & Buchanan 1996 J Biomech 29:1371",
+    ),
     ("wrist_flexion", "-", 7.1, 2.1, 4.2, 1.2, "Delp et al. 1996"),
-    ("wrist_deviation", "+", 11.0, 2.0, 6.5, 1.2, "Delp et al. 1996"),
-    ("wrist_deviation", "-", 9.5, 2.2, 5.6, 1.3, "Delp et al. 1996"),
-    ("hip_flexion", "-", 209.2, 66.1, 154.0, 44.1, "Anderson, Madigan & Nussbaum 2007 J Biomech 40:3105 Table 3 x ICRP 89 reference adults"),
-    ("hip_flexion", "+", 138.6, 35.1, 104.6, 27.7, "Anderson et al. 2007 x ICRP 89"),
-    ("knee_flexion", "-", 201.0, 53.9, 137.7, 29.3, "Anderson et al. 2007 x ICRP 89"),
-    ("knee_flexion", "+", 105.9, 25.7, 67.2, 17.8, "Anderson et al. 2007 x ICRP 89"),
-    ("ankle_dorsiflexion", "-", 131.7, 37.6, 94.5, 32.0, "Anderson et al. 2007 x ICRP 89"),
-    ("ankle_dorsiflexion", "+", 38.4, 8.6, 24.5, 5.2, "Anderson et al. 2007 x ICRP 89"),
-    ("hip_abduction", "+", 94.2, 22.5, 67.8, 15.7, "Sugimoto et al. 2014 Clin J Sport Med 24:422 x ICRP 89 body mass"),
-    ("hip_abduction", "-", 103.6, 24.8, 74.6, 17.3, "ASSUMPTION: abductors x 1.1 (Cahalan et al. 1989)"),
-    ("hip_rotation", "+", 45.0, 13.5, 32.0, 9.6, "ASSUMPTION (Cahalan et al. 1989; Lindsay et al. 1992)"),
-    ("hip_rotation", "-", 40.0, 12.0, 28.0, 8.4, "ASSUMPTION (Lindsay et al. 1992)"),
-    ("ankle_inversion", "+", 33.4, 11.8, 24.0, 8.5, "DERIVED: da Fonseca et al. 2025 World J Orthop 16:108858 ratio x plantarflexors"),
-    ("ankle_inversion", "-", 27.7, 9.4, 19.9, 6.8, "DERIVED: da Fonseca et al. 2025 ratio x plantarflexors"),
+    (
+        "wrist_deviation",
+        "+",
+        11.0,
+        2.0,
+        6.5,
+        1.2,
+        "Delp et al. 1996",
+    ),
+    (
+        "wrist_deviation",
+        "-",
+        9.5,
+        2.2,
+        5.6,
+        1.3,
+        "Delp et al. 1996",
+    ),
+    (
+        "hip_flexion",
+        "-",
+        209.2,
+        66.1,
+        154.0,
+        44.1,
+        "Anderson, Madigan & Nussbaum 2007 J Biomech 40:3105 Table 3 x ICRP 89 reference adults",
+    ),
+    (
+        "hip_flexion",
+        "+",
+        138.6,
+        35.1,
+        104.6,
+        27.7,
+        "Anderson et al. 2007 x ICRP 89",
+    ),
+    (
+        "knee_flexion",
+        "-",
+        201.0,
+        53.9,
+        137.7,
+        29.3,
+        "Anderson et al. 2007 x ICRP 89",
+    ),
+    (
+        "knee_flexion",
+        "+",
+        105.9,
+        25.7,
+        67.2,
+        17.8,
+        "Anderson et al. 2007 x ICRP 89",
+    ),
+    (
+        "ankle_dorsiflexion",
+        "-",
+        131.7,
+        37.6,
+        94.5,
+        32.0,
+        "Anderson et al. 2007 x ICRP 89",
+    ),
+    (
+        "ankle_dorsiflexion",
+        "+",
+        38.4,
+        8.6,
+        24.5,
+        5.2,
+        "Anderson et al. 2007 x ICRP 89",
+    ),
+    (
+        "hip_abduction",
+        "+",
+        94.2,
+        22.5,
+        67.8,
+        15.7,
+        "Sugimoto et al. 2014 Clin J Sport Med 24:422 x ICRP 89 body mass",
+    ),
+    (
+        "hip_abduction",
+        "-",
+        103.6,
+        24.8,
+        74.6,
+        17.3,
+        "ASSUMPTION: abductors x 1.1 (Cahalan et al. 1989)",
+    ),
+    (
+        "hip_rotation",
+        "+",
+        45.0,
+        13.5,
+        32.0,
+        9.6,
+        "ASSUMPTION (Cahalan et al. 1989; Lindsay et al. 1992)",
+    ),
+    (
+        "hip_rotation",
+        "-",
+        40.0,
+        12.0,
+        28.0,
+        8.4,
+        "ASSUMPTION (Lindsay et al. 1992)",
+    ),
+    (
+        "ankle_inversion",
+        "+",
+        33.4,
+        11.8,
+        24.0,
+        8.5,
+        "DERIVED: da Fonseca et al. 2025 World J Orthop 16:108858 ratio x plantarflexors",
+    ),
+    (
+        "ankle_inversion",
+        "-",
+        27.7,
+        9.4,
+        19.9,
+        6.8,
+        "DERIVED: da Fonseca et al. 2025 ratio x plantarflexors",
+    ),
 ];
 
 fn dir(s: &str) -> Direction {
@@ -477,7 +937,13 @@ fn expected_mvc(row: &Row, sex: Sex, percentile: f64) -> f64 {
 
 fn half_joints(w: &Worker) -> Vec<HalfJoint> {
     let m = generate(w);
-    resolve_half_joints(&m, &StrengthTable::default_table(), w, "robots/worker.strength.yaml").unwrap()
+    resolve_half_joints(
+        &m,
+        &StrengthTable::default_table(),
+        w,
+        "robots/worker.strength.yaml",
+    )
+    .unwrap()
 }
 
 #[test]
@@ -500,12 +966,29 @@ fn p5_p50_p95_strength_of_men_and_women_is_mean_plus_z_sd() {
                 h.mvc_nm,
                 row.6
             );
-            assert!(!h.source.contains("URDF <limit effort>"), "{who}: {} from the table", h.id);
-            assert_eq!((h.male.mean_nm, h.male.sd_nm, h.female.mean_nm, h.female.sd_nm), (row.2, row.3, row.4, row.5), "{}", h.id);
+            assert!(
+                !h.source.contains("URDF <limit effort>"),
+                "{who}: {} from the table",
+                h.id
+            );
+            assert_eq!(
+                (
+                    h.male.mean_nm,
+                    h.male.sd_nm,
+                    h.female.mean_nm,
+                    h.female.sd_nm
+                ),
+                (row.2, row.3, row.4, row.5),
+                "{}",
+                h.id
+            );
         }
         // every row is used, on both sides where sided
         for row in &STRENGTH {
-            let n = hj.iter().filter(|h| h.joint.ends_with(row.0) && h.direction == dir(row.1)).count();
+            let n = hj
+                .iter()
+                .filter(|h| h.joint.ends_with(row.0) && h.direction == dir(row.1))
+                .count();
             let sided = !(row.0.starts_with("lumbar") || row.0.starts_with("neck"));
             assert_eq!(n, if sided { 2 } else { 1 }, "{who}: {}{}", row.0, row.1);
         }
@@ -556,19 +1039,150 @@ fn factor_at(m: &BodyModel, h: &HalfJoint, angles_deg: &[(&str, f64)]) -> f64 {
 
 /// (half-joint, curve joint, tabulated (deg, factor) points, reference angle) from the table.
 const CURVES: [(&str, &str, &[(f64, f64)], f64); 13] = [
-    ("lumbar_flexion+", "lumbar_flexion", &[(-25.0, 0.85), (0.0, 1.0), (25.0, 1.2), (36.0, 1.2), (50.0, 1.1), (80.0, 0.85)], 0.0),
-    ("lumbar_flexion-", "lumbar_flexion", &[(-25.0, 0.85), (0.0, 1.0), (20.0, 1.35), (36.0, 1.68), (50.0, 1.75), (80.0, 1.6)], 0.0),
-    ("r_shoulder_flexion+", "r_shoulder_flexion", &[(-60.0, 1.0), (0.0, 1.0), (45.0, 0.76), (90.0, 0.65), (180.0, 0.55)], 0.0),
-    ("r_forearm_pronation-", "r_forearm_pronation", &[(-80.0, 0.6), (0.0, 0.85), (60.0, 1.0), (80.0, 1.0)], 60.0),
-    ("r_wrist_flexion+", "r_wrist_flexion", &[(-70.0, 0.6), (0.0, 0.9), (40.0, 1.0), (80.0, 0.9)], 40.0),
-    ("l_wrist_flexion-", "l_wrist_flexion", &[(-70.0, 1.0), (30.0, 1.0), (80.0, 0.9)], 0.0),
-    ("l_hip_flexion-", "l_hip_flexion", &[(-30.0, 0.25), (0.0, 0.56), (30.0, 0.86), (66.0, 1.0), (90.0, 0.94), (120.0, 0.69)], 66.0),
-    ("r_hip_flexion+", "r_hip_flexion", &[(-30.0, 0.98), (-14.0, 1.0), (0.0, 0.99), (30.0, 0.85), (60.0, 0.59), (90.0, 0.25), (120.0, 0.25)], -14.0),
-    ("r_knee_flexion-", "r_knee_flexion", &[(0.0, 0.35), (10.0, 0.35), (20.0, 0.51), (30.0, 0.69), (45.0, 0.88), (68.0, 1.0), (90.0, 0.89), (110.0, 0.61), (135.0, 0.25)], 68.0),
-    ("l_knee_flexion+", "l_knee_flexion", &[(0.0, 0.89), (30.0, 1.0), (60.0, 0.88), (90.0, 0.57), (110.0, 0.27), (135.0, 0.25)], 30.0),
-    ("r_ankle_dorsiflexion-", "r_ankle_dorsiflexion", &[(-50.0, 0.25), (-30.0, 0.25), (-15.0, 0.53), (0.0, 0.81), (10.0, 0.93), (20.0, 0.99), (25.0, 1.0)], 25.0),
-    ("r_hip_rotation+", "r_hip_flexion", &[(-30.0, 1.0), (0.0, 1.0), (40.0, 1.15), (90.0, 1.3), (120.0, 1.3)], 0.0),
-    ("l_ankle_inversion+", "l_ankle_inversion", &[(-15.0, 1.15), (0.0, 1.0), (35.0, 0.6)], 0.0),
+    (
+        "lumbar_flexion+",
+        "lumbar_flexion",
+        &[
+            (-25.0, 0.85),
+            (0.0, 1.0),
+            (25.0, 1.2),
+            (36.0, 1.2),
+            (50.0, 1.1),
+            (80.0, 0.85),
+        ],
+        0.0,
+    ),
+    (
+        "lumbar_flexion-",
+        "lumbar_flexion",
+        &[
+            (-25.0, 0.85),
+            (0.0, 1.0),
+            (20.0, 1.35),
+            (36.0, 1.68),
+            (50.0, 1.75),
+            (80.0, 1.6),
+        ],
+        0.0,
+    ),
+    (
+        "r_shoulder_flexion+",
+        "r_shoulder_flexion",
+        &[
+            (-60.0, 1.0),
+            (0.0, 1.0),
+            (45.0, 0.76),
+            (90.0, 0.65),
+            (180.0, 0.55),
+        ],
+        0.0,
+    ),
+    (
+        "r_forearm_pronation-",
+        "r_forearm_pronation",
+        &[(-80.0, 0.6), (0.0, 0.85), (60.0, 1.0), (80.0, 1.0)],
+        60.0,
+    ),
+    (
+        "r_wrist_flexion+",
+        "r_wrist_flexion",
+        &[(-70.0, 0.6), (0.0, 0.9), (40.0, 1.0), (80.0, 0.9)],
+        40.0,
+    ),
+    (
+        "l_wrist_flexion-",
+        "l_wrist_flexion",
+        &[(-70.0, 1.0), (30.0, 1.0), (80.0, 0.9)],
+        0.0,
+    ),
+    (
+        "l_hip_flexion-",
+        "l_hip_flexion",
+        &[
+            (-30.0, 0.25),
+            (0.0, 0.56),
+            (30.0, 0.86),
+            (66.0, 1.0),
+            (90.0, 0.94),
+            (120.0, 0.69),
+        ],
+        66.0,
+    ),
+    (
+        "r_hip_flexion+",
+        "r_hip_flexion",
+        &[
+            (-30.0, 0.98),
+            (-14.0, 1.0),
+            (0.0, 0.99),
+            (30.0, 0.85),
+            (60.0, 0.59),
+            (90.0, 0.25),
+            (120.0, 0.25),
+        ],
+        -14.0,
+    ),
+    (
+        "r_knee_flexion-",
+        "r_knee_flexion",
+        &[
+            (0.0, 0.35),
+            (10.0, 0.35),
+            (20.0, 0.51),
+            (30.0, 0.69),
+            (45.0, 0.88),
+            (68.0, 1.0),
+            (90.0, 0.89),
+            (110.0, 0.61),
+            (135.0, 0.25),
+        ],
+        68.0,
+    ),
+    (
+        "l_knee_flexion+",
+        "l_knee_flexion",
+        &[
+            (0.0, 0.89),
+            (30.0, 1.0),
+            (60.0, 0.88),
+            (90.0, 0.57),
+            (110.0, 0.27),
+            (135.0, 0.25),
+        ],
+        30.0,
+    ),
+    (
+        "r_ankle_dorsiflexion-",
+        "r_ankle_dorsiflexion",
+        &[
+            (-50.0, 0.25),
+            (-30.0, 0.25),
+            (-15.0, 0.53),
+            (0.0, 0.81),
+            (10.0, 0.93),
+            (20.0, 0.99),
+            (25.0, 1.0),
+        ],
+        25.0,
+    ),
+    (
+        "r_hip_rotation+",
+        "r_hip_flexion",
+        &[
+            (-30.0, 1.0),
+            (0.0, 1.0),
+            (40.0, 1.15),
+            (90.0, 1.3),
+            (120.0, 1.3),
+        ],
+        0.0,
+    ),
+    (
+        "l_ankle_inversion+",
+        "l_ankle_inversion",
+        &[(-15.0, 1.15), (0.0, 1.0), (35.0, 0.6)],
+        0.0,
+    ),
 ];
 
 #[test]
@@ -579,9 +1193,15 @@ fn posture_curves_pass_through_the_table_and_are_one_at_the_reference() {
         assert!(h.posture_dependent(), "{id}");
         for &(deg, factor) in points {
             let f = factor_at(&m, h, &[(joint, deg)]);
-            assert!((f - factor).abs() < 1e-12, "{id} at {joint} = {deg}°: {f} vs {factor}");
+            assert!(
+                (f - factor).abs() < 1e-12,
+                "{id} at {joint} = {deg}°: {f} vs {factor}"
+            );
         }
-        assert!((factor_at(&m, h, &[(joint, reference)]) - 1.0).abs() < 1e-12, "{id}: 1 at the reference {reference}°");
+        assert!(
+            (factor_at(&m, h, &[(joint, reference)]) - 1.0).abs() < 1e-12,
+            "{id}: 1 at the reference {reference}°"
+        );
         // shape-preserving: between two points the curve stays within their values
         for w in points.windows(2) {
             let (lo, hi) = (w[0].1.min(w[1].1), w[0].1.max(w[1].1));
@@ -589,7 +1209,10 @@ fn posture_curves_pass_through_the_table_and_are_one_at_the_reference() {
                 let deg = w[0].0 + (w[1].0 - w[0].0) * i as f64 / 20.0;
                 let f = factor_at(&m, h, &[(joint, deg)]);
                 if w[0].1 != w[1].1 {
-                    assert!(f >= lo - 1e-12 && f <= hi + 1e-12, "{id} at {deg}°: {f} outside {lo}..{hi}");
+                    assert!(
+                        f >= lo - 1e-12 && f <= hi + 1e-12,
+                        "{id} at {deg}°: {f} outside {lo}..{hi}"
+                    );
                 }
             }
         }
@@ -597,7 +1220,11 @@ fn posture_curves_pass_through_the_table_and_are_one_at_the_reference() {
     // elbow flexors: elbow angle and forearm rotation multiply (the documented example:
     // 30° elbow flexion, pronated forearm: 0.80 × 0.47)
     let h = hj.iter().find(|h| h.id == "r_elbow_flexion+").unwrap();
-    let f = factor_at(&m, h, &[("r_elbow_flexion", 30.0), ("r_forearm_pronation", 80.0)]);
+    let f = factor_at(
+        &m,
+        h,
+        &[("r_elbow_flexion", 30.0), ("r_forearm_pronation", 80.0)],
+    );
     assert!((f - 0.80 * 0.47).abs() < 1e-12, "{f}");
     assert!((factor_at(&m, h, &[("r_elbow_flexion", 90.0)]) - 1.0).abs() < 1e-12);
     // a group without a curve is flat
@@ -612,20 +1239,62 @@ fn posture_curves_are_monotone_where_the_sources_say_so() {
     let (m, hj) = p50();
     // (half-joint, joint, from, to, rising?, source)
     let cases: [(&str, &str, f64, f64, bool, &str); 7] = [
-        ("r_forearm_pronation-", "r_forearm_pronation", -80.0, 80.0, true,
-         "supination strength rises as the forearm is more pronated (O'Sullivan & Gallwey 2002)"),
-        ("r_hip_rotation+", "r_hip_flexion", -30.0, 120.0, true,
-         "internal-rotation torque rises with hip flexion (Johnson & Hoffman 2010)"),
-        ("l_ankle_inversion+", "l_ankle_inversion", -15.0, 35.0, false,
-         "invertor torque falls from pronated to supinated positions (J Foot Ankle Res 8:64, 2015)"),
-        ("r_shoulder_flexion+", "r_shoulder_flexion", 0.0, 180.0, false,
-         "overhead weakest (Garg et al.); 45° measured at 0.76"),
-        ("lumbar_flexion-", "lumbar_flexion", -25.0, 50.0, true,
-         "extension torque +68 % at 36° and greatest at 50° flexion (Keller & Roy 2002)"),
-        ("r_ankle_dorsiflexion-", "r_ankle_dorsiflexion", -50.0, 25.0, true,
-         "plantarflexor torque peaks at 25° dorsiflexion (Anderson et al. 2007)"),
-        ("r_hip_flexion+", "r_hip_flexion", -14.0, 120.0, false,
-         "hip flexor torque peaks at 14° extension (Anderson et al. 2007)"),
+        (
+            "r_forearm_pronation-",
+            "r_forearm_pronation",
+            -80.0,
+            80.0,
+            true,
+            "supination strength rises as the forearm is more pronated (O'Sullivan & Gallwey 2002)",
+        ),
+        (
+            "r_hip_rotation+",
+            "r_hip_flexion",
+            -30.0,
+            120.0,
+            true,
+            "internal-rotation torque rises with hip flexion (Johnson & Hoffman 2010)",
+        ),
+        (
+            "l_ankle_inversion+",
+            "l_ankle_inversion",
+            -15.0,
+            35.0,
+            false,
+            "invertor torque falls from pronated to supinated positions (J Foot Ankle Res 8:64, 2015)",
+        ),
+        (
+            "r_shoulder_flexion+",
+            "r_shoulder_flexion",
+            0.0,
+            180.0,
+            false,
+            "overhead weakest (Garg et al.); 45° measured at 0.76",
+        ),
+        (
+            "lumbar_flexion-",
+            "lumbar_flexion",
+            -25.0,
+            50.0,
+            true,
+            "extension torque +68 % at 36° and greatest at 50° flexion (Keller & Roy 2002)",
+        ),
+        (
+            "r_ankle_dorsiflexion-",
+            "r_ankle_dorsiflexion",
+            -50.0,
+            25.0,
+            true,
+            "plantarflexor torque peaks at 25° dorsiflexion (Anderson et al. 2007)",
+        ),
+        (
+            "r_hip_flexion+",
+            "r_hip_flexion",
+            -14.0,
+            120.0,
+            false,
+            "hip flexor torque peaks at 14° extension (Anderson et al. 2007)",
+        ),
     ];
     for (id, joint, from, to, rising, why) in cases {
         let h = hj.iter().find(|h| h.id == id).unwrap();
@@ -653,7 +1322,10 @@ fn posture_curves_are_monotone_where_the_sources_say_so() {
         let top = factor_at(&m, h, &[(joint, peak)]);
         for i in 0..=300 {
             let deg = lo + (hi - lo) * i as f64 / 300.0;
-            assert!(factor_at(&m, h, &[(joint, deg)]) <= top + 1e-12, "{id}: above its peak at {deg}°");
+            assert!(
+                factor_at(&m, h, &[(joint, deg)]) <= top + 1e-12,
+                "{id}: above its peak at {deg}°"
+            );
         }
     }
 }
@@ -678,7 +1350,12 @@ fn mvc_gradient_matches_finite_differences() {
             qp[k] += e;
             qm[k] -= e;
             let fd = (h.mvc_at(&qp) - h.mvc_at(&qm)) / (2.0 * e);
-            assert!((g - fd).abs() < 1e-5 * h.mvc_nm, "{} ∂/∂{}: {g} vs {fd}", h.id, m.q_joint(k).name);
+            assert!(
+                (g - fd).abs() < 1e-5 * h.mvc_nm,
+                "{} ∂/∂{}: {g} vs {fd}",
+                h.id,
+                m.q_joint(k).name
+            );
         }
     }
 }
@@ -694,6 +1371,11 @@ fn absurd_workers_are_refused() {
     ] {
         let e = worker_urdf(&w, &StrengthTable::default_table()).unwrap_err();
         let msg = e.to_string();
-        assert!(msg.contains("stature_m") || msg.contains("mass_kg") || msg.contains("strength_percentile"), "{msg}");
+        assert!(
+            msg.contains("stature_m")
+                || msg.contains("mass_kg")
+                || msg.contains("strength_percentile"),
+            "{msg}"
+        );
     }
 }

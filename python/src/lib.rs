@@ -12,12 +12,12 @@
 
 use nalgebra::Vector3;
 use posture_opt::assess::assess;
-use posture_opt::body::{statics_report, BodyModel, Sex, Worker, GRAVITY_M_S2};
+use posture_opt::body::{BodyModel, GRAVITY_M_S2, Sex, Worker, statics_report};
 use posture_opt::plan::task::{MAX_HAND_FORCE_N, MAX_LOAD_KG};
-use posture_opt::plan::{plan_task_with, PlanError, PlanOptions, Task, TaskError, TaskFile};
+use posture_opt::plan::{PlanError, PlanOptions, Task, TaskError, TaskFile, plan_task_with};
 use posture_opt::record::evaluator::{DEGREES_SUSPECT_RAD, RANGE_TOLERANCE_RAD};
 use posture_opt::record::opensim::Mapping;
-use posture_opt::record::run::{RunError, Timeline, HOLD_RULE, TIMELINE_POINTS};
+use posture_opt::record::run::{HOLD_RULE, RunError, TIMELINE_POINTS, Timeline};
 use posture_opt::record::{self, Evaluation, Evaluator, Input, Sample};
 use posture_opt::report::PlanDocument;
 use posture_opt::study::compare::{self as cmp, CompareShard};
@@ -63,7 +63,8 @@ fn sweep_err(e: SweepError) -> PyErr {
 }
 
 fn json(v: &impl serde::Serialize) -> PyResult<String> {
-    serde_json::to_string(v).map_err(|e| PyRuntimeError::new_err(format!("cannot serialise the result: {e}")))
+    serde_json::to_string(v)
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot serialise the result: {e}")))
 }
 
 /// Runs `f` on a pool of `threads` threads (the global pool when `None`).
@@ -96,7 +97,10 @@ fn f64_bytes<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyBytes> {
 
 fn bytes_f64(what: &str, b: &[u8]) -> PyResult<Vec<f64>> {
     if b.len() % 8 != 0 {
-        return Err(bad(format!("{what}: {} bytes is not a whole number of float64 values", b.len())));
+        return Err(bad(format!(
+            "{what}: {} bytes is not a whole number of float64 values",
+            b.len()
+        )));
     }
     Ok(b.chunks_exact(8)
         .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
@@ -129,7 +133,10 @@ fn parse_task(text: &str, path: &Path) -> Result<(TaskFile, Task), TaskError> {
 
 fn task_obj(file: TaskFile, task: Task) -> PyTask {
     PyTask {
-        inner: Arc::new(TaskData { task, file: Some(file) }),
+        inner: Arc::new(TaskData {
+            task,
+            file: Some(file),
+        }),
     }
 }
 
@@ -218,12 +225,22 @@ impl PyTask {
     /// The muscle groups in words, ordered like `half_joint_ids`.
     #[getter]
     fn groups(&self) -> Vec<String> {
-        self.inner.task.half_joints.iter().map(|h| h.group.clone()).collect()
+        self.inner
+            .task
+            .half_joints
+            .iter()
+            .map(|h| h.group.clone())
+            .collect()
     }
     /// Phase names of one cycle, in order.
     #[getter]
     fn phases(&self) -> Vec<String> {
-        self.inner.task.phases.iter().map(|p| p.name.clone()).collect()
+        self.inner
+            .task
+            .phases
+            .iter()
+            .map(|p| p.name.clone())
+            .collect()
     }
     #[getter]
     fn cycles(&self) -> u32 {
@@ -253,7 +270,11 @@ impl PyTask {
     /// Hand frames (right, left); None for a hand the body lacks.
     #[getter]
     fn hand_frames(&self) -> [Option<String>; 2] {
-        self.inner.task.hand_links.clone().map(|h| h.map(|(_, n)| n))
+        self.inner
+            .task
+            .hand_links
+            .clone()
+            .map(|h| h.map(|(_, n)| n))
     }
     /// Whether the body stands on its feet.
     #[getter]
@@ -273,7 +294,11 @@ impl PyTask {
     /// The task file as a dict (as written, defaults filled in); None for a set-up made by
     /// `default_setup`. `load_task(task.to_dict(), path=task.path)` makes the same task.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        self.inner.file.as_ref().map(|f| loads(py, &json(f)?)).transpose()
+        self.inner
+            .file
+            .as_ref()
+            .map(|f| loads(py, &json(f)?))
+            .transpose()
     }
     fn __repr__(&self) -> String {
         let t = &self.inner.task;
@@ -314,7 +339,13 @@ fn shard_of(shard: Option<&str>) -> PyResult<Option<Shard>> {
 /// Plans a task and assesses the plan: the `plan --json` document.
 #[pyfunction]
 #[pyo3(signature = (task, adapt=true, fatigue_only=false, capacity_floor=0.7))]
-fn plan(py: Python<'_>, task: &PyTask, adapt: bool, fatigue_only: bool, capacity_floor: f64) -> PyResult<String> {
+fn plan(
+    py: Python<'_>,
+    task: &PyTask,
+    adapt: bool,
+    fatigue_only: bool,
+    capacity_floor: f64,
+) -> PyResult<String> {
     let opts = plan_options(adapt, fatigue_only, capacity_floor)?;
     let data = task.inner.clone();
     py.detach(move || {
@@ -367,10 +398,16 @@ fn compare(
         return Err(bad("compare needs at least one layout"));
     }
     if names.len() != tasks.len() {
-        return Err(bad(format!("{} names for {} layouts", names.len(), tasks.len())));
+        return Err(bad(format!(
+            "{} names for {} layouts",
+            names.len(),
+            tasks.len()
+        )));
     }
     if shard.is_none() && tasks.len() > MAX_LAYOUTS {
-        return Err(bad(format!("at most {MAX_LAYOUTS} layouts per comparison (use shard to split)")));
+        return Err(bad(format!(
+            "at most {MAX_LAYOUTS} layouts per comparison (use shard to split)"
+        )));
     }
     let data: Vec<Arc<TaskData>> = tasks.iter().map(|t| t.inner.clone()).collect();
     drop(tasks);
@@ -436,8 +473,16 @@ fn sweep(
                 "sample {n}: at most {MAX_SAMPLE} workers (use shard to spread a larger study)"
             )));
         }
-        Some(n) => (swp::sampled_population(n, seed), format!("sampled n={n} seed={seed}"), true),
-        None => (swp::standard_population(), "P5/P50/P95 women and men".to_string(), false),
+        Some(n) => (
+            swp::sampled_population(n, seed),
+            format!("sampled n={n} seed={seed}"),
+            true,
+        ),
+        None => (
+            swp::standard_population(),
+            "P5/P50/P95 women and men".to_string(),
+            false,
+        ),
     };
     py.detach(move || {
         let path = data.task.path.clone();
@@ -459,7 +504,14 @@ fn sweep(
                 workers,
             });
         }
-        let s = Sweep::from_outcomes(&file.name, &population, sampled, opts.adapt, capacity_floor, workers);
+        let s = Sweep::from_outcomes(
+            &file.name,
+            &population,
+            sampled,
+            opts.adapt,
+            capacity_floor,
+            workers,
+        );
         json(&s)
     })
 }
@@ -483,7 +535,10 @@ fn merge_sweep(py: Python<'_>, shards: Vec<(String, String)>) -> PyResult<String
 // Evaluating recorded work
 
 fn check_loads(hand_load_kg: [f64; 2]) -> PyResult<()> {
-    for (name, v) in [("right_load_kg", hand_load_kg[0]), ("left_load_kg", hand_load_kg[1])] {
+    for (name, v) in [
+        ("right_load_kg", hand_load_kg[0]),
+        ("left_load_kg", hand_load_kg[1]),
+    ] {
         if !(v.is_finite() && (0.0..=MAX_LOAD_KG).contains(&v)) {
             return Err(bad(format!("{name} must be 0..{MAX_LOAD_KG} kg, got {v}")));
         }
@@ -509,7 +564,10 @@ fn evaluate_file(
 ) -> PyResult<String> {
     let hand_load_kg = [hand_load_kg.0, hand_load_kg.1];
     check_loads(hand_load_kg)?;
-    let opts = record::Options { degrees, hand_load_kg };
+    let opts = record::Options {
+        degrees,
+        hand_load_kg,
+    };
     let data = task.inner.clone();
     py.detach(move || {
         let task = &data.task;
@@ -595,14 +653,19 @@ impl Run {
         let nq = task.model.nq();
         let where_ = format!("{}: sample {} (t = {t_s} s)", self.source, self.pushed);
         if q.len() != nq {
-            return Err(format!("{where_}: a sample needs {nq} joint angles, got {}", q.len()));
+            return Err(format!(
+                "{where_}: a sample needs {nq} joint angles, got {}",
+                q.len()
+            ));
         }
         if !t_s.is_finite() || q.iter().any(|v| !v.is_finite()) {
             return Err(format!("{where_}: every value must be finite"));
         }
         if let Some(t0) = self.last_t_s {
             if t_s <= t0 {
-                return Err(format!("{where_}: time {t_s} does not increase (previous sample at {t0})"));
+                return Err(format!(
+                    "{where_}: time {t_s} does not increase (previous sample at {t0})"
+                ));
             }
         }
         let g = task.gravity_m_s2;
@@ -638,8 +701,8 @@ impl Run {
             }
             let beyond = (j.lower_rad - v).max(v - j.upper_rad);
             let as_deg = v.to_radians();
-            let fits_as_deg =
-                as_deg >= j.lower_rad - RANGE_TOLERANCE_RAD && as_deg <= j.upper_rad + RANGE_TOLERANCE_RAD;
+            let fits_as_deg = as_deg >= j.lower_rad - RANGE_TOLERANCE_RAD
+                && as_deg <= j.upper_rad + RANGE_TOLERANCE_RAD;
             if beyond > DEGREES_SUSPECT_RAD && fits_as_deg {
                 return Err(format!(
                     "{where_}: {} = {v} rad lies far outside its range [{:.2}, {:.2}] rad, and {v}° would fit: are the angles in degrees? Pass degrees=True",
@@ -651,7 +714,8 @@ impl Run {
         let Run { cell, timeline, .. } = self;
         let new = cell.with_dependent_mut(|_, ev| {
             // counts a sample outside the range; the refusal was checked above
-            ev.check_range(&s.q_rad).map_err(|(k, v)| format!("{where_}: q[{k}] = {v} looks like degrees"))?;
+            ev.check_range(&s.q_rad)
+                .map_err(|(k, v)| format!("{where_}: q[{k}] = {v} looks like degrees"))?;
             let new = ev.push(&s).map_err(|e| format!("{where_}: {e}"))?;
             timeline_push(timeline, i, t_s, ev);
             Ok::<usize, String>(new)
@@ -672,9 +736,16 @@ impl Run {
         let nh = ids.len();
         let final_c: Vec<f64> = ev.state.iter().map(|s| s.capacity).collect();
         let final_u: Vec<f64> = ev.state.iter().map(|s| s.fatigue_u_min).collect();
-        let worst = (0..nh).max_by(|&a, &b| final_u[a].total_cmp(&final_u[b])).unwrap_or(0);
+        let worst = (0..nh)
+            .max_by(|&a, &b| final_u[a].total_cmp(&final_u[b]))
+            .unwrap_or(0);
         let (t0, t1) = ev.span_s();
-        let group = |h: usize| task.half_joints.get(h).map(|x| x.group.clone()).unwrap_or_default();
+        let group = |h: usize| {
+            task.half_joints
+                .get(h)
+                .map(|x| x.group.clone())
+                .unwrap_or_default()
+        };
         Ok(Evaluation {
             source: self.source.clone(),
             robot: task.robot.clone(),
@@ -728,8 +799,10 @@ fn timeline_push(tl: &mut Timeline, i: u64, t: f64, ev: &Evaluator) {
         }
     }
     tl.t_s.push(t);
-    tl.capacity.push(ev.state.iter().map(|s| s.capacity).collect());
-    tl.fatigue_u_min.push(ev.state.iter().map(|s| s.fatigue_u_min).collect());
+    tl.capacity
+        .push(ev.state.iter().map(|s| s.capacity).collect());
+    tl.fatigue_u_min
+        .push(ev.state.iter().map(|s| s.fatigue_u_min).collect());
     tl.load.push(ev.loads.clone());
 }
 
@@ -749,7 +822,12 @@ fn evaluate_arrays<'py>(
     degrees: bool,
     hand_load_kg: (f64, f64),
     source: String,
-) -> PyResult<(String, Bound<'py, PyBytes>, Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
+) -> PyResult<(
+    String,
+    Bound<'py, PyBytes>,
+    Bound<'py, PyBytes>,
+    Bound<'py, PyBytes>,
+)> {
     let hand_load_kg = [hand_load_kg.0, hand_load_kg.1];
     check_loads(hand_load_kg)?;
     let t = bytes_f64("t", t)?;
@@ -760,15 +838,25 @@ fn evaluate_arrays<'py>(
     let nh = data.task.half_joints.len();
     let n = t.len();
     if q.len() != n * nq {
-        return Err(bad(format!("q: expected {n} x {nq} values (samples x joints), got {}", q.len())));
+        return Err(bad(format!(
+            "q: expected {n} x {nq} values (samples x joints), got {}",
+            q.len()
+        )));
     }
     let any_force = force_given.0 || force_given.1;
     if any_force && force.len() != n * 6 {
-        return Err(bad(format!("force: expected {n} x 2 x 3 values, got {}", force.len())));
+        return Err(bad(format!(
+            "force: expected {n} x 2 x 3 values, got {}",
+            force.len()
+        )));
     }
     let (doc, cap, u, load) = py.detach(move || {
         let mut run = Run::new(data, source, degrees, hand_load_kg);
-        let (mut cap, mut u, mut load) = (Vec::with_capacity(n * nh), Vec::with_capacity(n * nh), Vec::with_capacity(n * nh));
+        let (mut cap, mut u, mut load) = (
+            Vec::with_capacity(n * nh),
+            Vec::with_capacity(n * nh),
+            Vec::with_capacity(n * nh),
+        );
         for i in 0..n {
             let mut forces: Forces = [None, None];
             for (h, given) in [force_given.0, force_given.1].into_iter().enumerate() {
@@ -777,7 +865,8 @@ fn evaluate_arrays<'py>(
                     forces[h] = Some([force[o], force[o + 1], force[o + 2]]);
                 }
             }
-            run.push(t[i], &q[i * nq..(i + 1) * nq], forces).map_err(bad)?;
+            run.push(t[i], &q[i * nq..(i + 1) * nq], forces)
+                .map_err(bad)?;
             let ev = run.ev();
             cap.extend(ev.state.iter().map(|s| s.capacity));
             u.extend(ev.state.iter().map(|s| s.fatigue_u_min));
@@ -786,7 +875,12 @@ fn evaluate_arrays<'py>(
         let doc = run.document().map_err(bad)?;
         Ok::<_, PyErr>((json(&doc)?, cap, u, load))
     })?;
-    Ok((doc, f64_bytes(py, &cap), f64_bytes(py, &u), f64_bytes(py, &load)))
+    Ok((
+        doc,
+        f64_bytes(py, &cap),
+        f64_bytes(py, &u),
+        f64_bytes(py, &load),
+    ))
 }
 
 /// Live evaluation: samples pushed one at a time (the same code as `evaluate`, so both agree
@@ -800,7 +894,12 @@ struct PyEvaluator {
 impl PyEvaluator {
     #[new]
     #[pyo3(signature = (task, degrees=false, hand_load_kg=(0.0, 0.0), source="stream".to_string()))]
-    fn new(task: &PyTask, degrees: bool, hand_load_kg: (f64, f64), source: String) -> PyResult<Self> {
+    fn new(
+        task: &PyTask,
+        degrees: bool,
+        hand_load_kg: (f64, f64),
+        source: String,
+    ) -> PyResult<Self> {
         let hand_load_kg = [hand_load_kg.0, hand_load_kg.1];
         check_loads(hand_load_kg)?;
         Ok(PyEvaluator {
@@ -810,23 +909,41 @@ impl PyEvaluator {
 
     /// Takes one sample; returns the number of new exhaustion events.
     #[pyo3(signature = (t, q, right_force=None, left_force=None))]
-    fn push(&mut self, t: f64, q: Vec<f64>, right_force: Option<[f64; 3]>, left_force: Option<[f64; 3]>) -> PyResult<usize> {
+    fn push(
+        &mut self,
+        t: f64,
+        q: Vec<f64>,
+        right_force: Option<[f64; 3]>,
+        left_force: Option<[f64; 3]>,
+    ) -> PyResult<usize> {
         self.run.push(t, &q, [right_force, left_force]).map_err(bad)
     }
 
     /// Takes many samples (float64 bytes as `evaluate_arrays`); returns the number of new
     /// exhaustion events.
-    fn push_many(&mut self, t: &[u8], q: &[u8], force: &[u8], force_given: (bool, bool)) -> PyResult<usize> {
+    fn push_many(
+        &mut self,
+        t: &[u8],
+        q: &[u8],
+        force: &[u8],
+        force_given: (bool, bool),
+    ) -> PyResult<usize> {
         let t = bytes_f64("t", t)?;
         let q = bytes_f64("q", q)?;
         let force = bytes_f64("force", force)?;
         let nq = self.run.task().model.nq();
         let n = t.len();
         if q.len() != n * nq {
-            return Err(bad(format!("q: expected {n} x {nq} values (samples x joints), got {}", q.len())));
+            return Err(bad(format!(
+                "q: expected {n} x {nq} values (samples x joints), got {}",
+                q.len()
+            )));
         }
         if (force_given.0 || force_given.1) && force.len() != n * 6 {
-            return Err(bad(format!("force: expected {n} x 2 x 3 values, got {}", force.len())));
+            return Err(bad(format!(
+                "force: expected {n} x 2 x 3 values, got {}",
+                force.len()
+            )));
         }
         let mut new = 0;
         for i in 0..n {
@@ -837,7 +954,10 @@ impl PyEvaluator {
                     forces[h] = Some([force[o], force[o + 1], force[o + 2]]);
                 }
             }
-            new += self.run.push(t[i], &q[i * nq..(i + 1) * nq], forces).map_err(bad)?;
+            new += self
+                .run
+                .push(t[i], &q[i * nq..(i + 1) * nq], forces)
+                .map_err(bad)?;
         }
         Ok(new)
     }
@@ -849,7 +969,13 @@ impl PyEvaluator {
     }
     /// Fatigue index U [min] per half-joint now.
     fn fatigue_u_min<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        let v: Vec<f64> = self.run.ev().state.iter().map(|s| s.fatigue_u_min).collect();
+        let v: Vec<f64> = self
+            .run
+            .ev()
+            .state
+            .iter()
+            .map(|s| s.fatigue_u_min)
+            .collect();
         f64_bytes(py, &v)
     }
     /// Relative load per half-joint of the last sample (held until the next).
@@ -900,29 +1026,38 @@ fn statics(
     let data = task.map(|t| t.inner.clone());
     py.detach(move || {
         let loaded;
-        let (model, origin, default_frame, default_gravity): (&BodyModel, String, Option<String>, Vector3<f64>) =
-            match (&robot, &data) {
-                (Some(_), Some(_)) => return Err(bad("give robot or task, not both")),
-                (Some(r), None) => {
-                    loaded = BodyModel::from_urdf_file(r).map_err(lib_err)?;
-                    (&loaded, r.display().to_string(), None, GRAVITY_M_S2)
-                }
-                (None, Some(d)) => (
-                    &d.task.model,
-                    d.task.robot.clone(),
-                    d.task.hand_links[0].as_ref().map(|(_, n)| n.clone()),
-                    d.task.gravity_m_s2,
-                ),
-                (None, None) => return Err(bad("give a robot (URDF file) or a task")),
-            };
+        let (model, origin, default_frame, default_gravity): (
+            &BodyModel,
+            String,
+            Option<String>,
+            Vector3<f64>,
+        ) = match (&robot, &data) {
+            (Some(_), Some(_)) => return Err(bad("give robot or task, not both")),
+            (Some(r), None) => {
+                loaded = BodyModel::from_urdf_file(r).map_err(lib_err)?;
+                (&loaded, r.display().to_string(), None, GRAVITY_M_S2)
+            }
+            (None, Some(d)) => (
+                &d.task.model,
+                d.task.robot.clone(),
+                d.task.hand_links[0].as_ref().map(|(_, n)| n.clone()),
+                d.task.gravity_m_s2,
+            ),
+            (None, None) => return Err(bad("give a robot (URDF file) or a task")),
+        };
         let Some(frame) = frame.or(default_frame) else {
-            return Err(bad("frame: give the link or joint whose origin is the hand point"));
+            return Err(bad(
+                "frame: give the link or joint whose origin is the hand point",
+            ));
         };
         let gravity = match gravity {
             Some(g) => {
                 for v in g {
                     if !(v.is_finite() && v.abs() <= 3.0 * 9.81) {
-                        return Err(bad(format!("gravity: '{v}' is not a number within ±{}", 3.0 * 9.81)));
+                        return Err(bad(format!(
+                            "gravity: '{v}' is not a number within ±{}",
+                            3.0 * 9.81
+                        )));
                     }
                 }
                 let g = Vector3::from(g);
@@ -936,13 +1071,17 @@ fn statics(
         let force = match (hand_load_kg, hand_force) {
             (Some(_), Some(_)) => return Err(bad("give hand_load_kg or hand_force, not both")),
             (Some(m), _) if !(m.is_finite() && (0.0..=1000.0).contains(&m)) => {
-                return Err(bad(format!("hand_load_kg must be within 0..1000 kg, got {m}")));
+                return Err(bad(format!(
+                    "hand_load_kg must be within 0..1000 kg, got {m}"
+                )));
             }
             (Some(m), _) => gravity * m,
             (None, Some(f)) => {
                 for v in f {
                     if !(v.is_finite() && v.abs() <= 1e4) {
-                        return Err(bad(format!("hand_force: '{v}' is not a number within ±10000")));
+                        return Err(bad(format!(
+                            "hand_force: '{v}' is not a number within ±10000"
+                        )));
                     }
                 }
                 Vector3::from(f)
@@ -959,7 +1098,8 @@ fn statics(
             }
             seen.push(name);
         }
-        let report = statics_report(model, &frame, &q, force, gravity).map_err(|e| bad(format!("{origin}: {e}")))?;
+        let report = statics_report(model, &frame, &q, force, gravity)
+            .map_err(|e| bad(format!("{origin}: {e}")))?;
         json(&report)
     })
 }
@@ -985,7 +1125,10 @@ fn _posture_opt(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("Error", py.get_type::<Error>())?;
     m.add("PlanningError", py.get_type::<PlanningError>())?;
     m.add("HOLD_RULE", HOLD_RULE)?;
-    m.add("DEFAULT_CAPACITY_FLOOR", posture_opt::assess::rest::DEFAULT_CAPACITY_FLOOR)?;
+    m.add(
+        "DEFAULT_CAPACITY_FLOOR",
+        posture_opt::assess::rest::DEFAULT_CAPACITY_FLOOR,
+    )?;
     m.add("RANKING_RULE", cmp::RANKING_RULE)?;
     m.add("MAX_LOAD_KG", MAX_LOAD_KG)?;
     m.add_class::<PyTask>()?;

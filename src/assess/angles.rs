@@ -17,7 +17,7 @@
 //! * **Legs**: knee flexion of each leg; whether both feet bear weight (each carries at least
 //!   [`UNILATERAL_SHARE`] of it).
 
-use crate::body::{forward_kinematics, BodyModel, StaticsData};
+use crate::body::{BodyModel, StaticsData, forward_kinematics};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -77,7 +77,11 @@ impl BodyAngles {
         q_rad: &[f64],
         left_foot_share: Option<f64>,
     ) -> Result<Self, NotWorker> {
-        let link = |name: &str| model.frame_link(name).map_err(|_| NotWorker(name.to_string()));
+        let link = |name: &str| {
+            model
+                .frame_link(name)
+                .map_err(|_| NotWorker(name.to_string()))
+        };
         let joint = |name: &str| model.q_index(name).map_err(|_| NotWorker(name.to_string()));
         let (pelvis, trunk, head) = (link("pelvis")?, link("trunk")?, link("head")?);
         forward_kinematics(model, data, q_rad);

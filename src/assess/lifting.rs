@@ -10,8 +10,8 @@
 //! lifting index.
 
 use super::niosh::{
-    assess_lift, composite, CompositeResult, Coupling, EquationForm, Lift, LiftGeometry,
-    LiftResult, NioshError, WorkDuration,
+    CompositeResult, Coupling, EquationForm, Lift, LiftGeometry, LiftResult, NioshError,
+    WorkDuration, assess_lift, composite,
 };
 use crate::plan::posture::PostureWork;
 use crate::plan::task::CouplingName;
@@ -50,7 +50,11 @@ fn geometry(task: &Task, plan: &Plan, pw: &mut PostureWork, p: usize) -> Option<
     };
     let d = Vector3::new(mid.x - ankles.x, mid.y - ankles.y, 0.0);
     let h = d.norm();
-    let a = if h > 1e-9 { d.y.atan2(d.x).to_degrees() } else { 0.0 };
+    let a = if h > 1e-9 {
+        d.y.atan2(d.x).to_degrees()
+    } else {
+        0.0
+    };
     Some(LiftGeometry {
         h_m: h,
         v_m: mid.z,

@@ -50,7 +50,10 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         let idx = if pr.phase == "rest" {
             n_ph
         } else {
-            task.phases.iter().position(|p| p.name == st.phase[i]).unwrap_or(0)
+            task.phases
+                .iter()
+                .position(|p| p.name == st.phase[i])
+                .unwrap_or(0)
         };
         loads[idx] = pr.load.clone();
     }

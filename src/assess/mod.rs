@@ -12,14 +12,14 @@
 //!   across the fatigue parameters' ranges.
 
 pub mod angles;
+pub mod lifting;
 pub mod low_back;
+pub mod meaning;
 pub mod niosh;
+pub mod phase;
 pub mod reba;
 pub mod rest;
 pub mod rula;
-pub mod lifting;
-pub mod meaning;
-pub mod phase;
 pub mod uncertainty;
 
 use crate::plan::{Plan, Task};
@@ -50,11 +50,21 @@ pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
     let phases = phase::assess_phases(task, plan);
     let capable_men = phases.iter().map(|p| p.capable_men).fold(1.0, f64::min);
     let capable_women = phases.iter().map(|p| p.capable_women).fold(1.0, f64::min);
-    let rula_max = phases.iter().filter_map(|p| p.rula.as_ref().map(|r| r.grand_score)).max();
-    let reba_max = phases.iter().filter_map(|p| p.reba.as_ref().map(|r| r.reba_score)).max();
+    let rula_max = phases
+        .iter()
+        .filter_map(|p| p.rula.as_ref().map(|r| r.grand_score))
+        .max();
+    let reba_max = phases
+        .iter()
+        .filter_map(|p| p.reba.as_ref().map(|r| r.reba_score))
+        .max();
     let back = phases
         .iter()
-        .filter_map(|p| p.low_back.as_ref().map(|b| (b.compression_n, p.phase.clone())))
+        .filter_map(|p| {
+            p.low_back
+                .as_ref()
+                .map(|b| (b.compression_n, p.phase.clone()))
+        })
         .fold(None, |a: Option<(f64, String)>, b| match a {
             Some(x) if x.0 >= b.0 => Some(x),
             _ => Some(b),

@@ -1208,9 +1208,10 @@ mod tests {
         let r = assess_lift(&l).unwrap();
         assert_eq!(r.freq_used_per_min, 0.2);
         assert_eq!(r.origin.multipliers.fm, 1.0);
-        assert!(r
-            .adjustments
-            .contains(&Adjustment::FrequencyRaisedToMinimum));
+        assert!(
+            r.adjustments
+                .contains(&Adjustment::FrequencyRaisedToMinimum)
+        );
     }
 
     #[test]
@@ -1403,9 +1404,10 @@ mod tests {
         let r = assess_lift(&l).unwrap();
         assert_eq!(r.origin.multipliers.hm, 1.0);
         assert_eq!(r.origin.multipliers.h_used_cm, 25.0);
-        assert!(r
-            .adjustments
-            .contains(&Adjustment::HorizontalRaisedToMinimum { at: Point::Origin }));
+        assert!(
+            r.adjustments
+                .contains(&Adjustment::HorizontalRaisedToMinimum { at: Point::Origin })
+        );
         // H = 63 cm exactly is inside the range; above it HM = 0, RWL = 0, LI undefined.
         l.origin.h_m = 0.63;
         assert_abs_diff_eq!(
@@ -1418,9 +1420,10 @@ mod tests {
         assert_eq!(r.rwl_kg, 0.0);
         assert_eq!(r.lifting_index, None);
         assert_eq!(r.fi_li, None);
-        assert!(r
-            .adjustments
-            .contains(&Adjustment::HorizontalBeyondMaximum { at: Point::Origin }));
+        assert!(
+            r.adjustments
+                .contains(&Adjustment::HorizontalBeyondMaximum { at: Point::Origin })
+        );
         // V above reach → VM = 0; A > 135° → AM = 0; D < 25 cm → DM = 1.
         let mut l = ideal_metric();
         l.destination.v_m = 0.80;
@@ -1492,10 +1495,12 @@ mod tests {
         );
         let mut l = ideal_metric();
         l.destination.v_m = -0.1;
-        assert!(assess_lift(&l)
-            .unwrap_err()
-            .to_string()
-            .starts_with("destination.v_m must be at least 0 m"));
+        assert!(
+            assess_lift(&l)
+                .unwrap_err()
+                .to_string()
+                .starts_with("destination.v_m must be at least 0 m")
+        );
         let mut l = ideal_metric();
         l.origin.asymmetry_deg = 200.0;
         assert!(matches!(

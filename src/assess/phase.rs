@@ -3,9 +3,9 @@
 //! enough for every muscle group's load.
 
 use super::angles::BodyAngles;
-use super::low_back::{low_back, BackParams, LowBack, LumbarLoad};
+use super::low_back::{BackParams, LowBack, LumbarLoad, low_back};
 use super::reba::{self, Reba, RebaActivity, RebaPosture, RebaSide, RebaThresholds};
-use super::rula::{score_body, Rula, RulaActivity};
+use super::rula::{Rula, RulaActivity, score_body};
 use crate::body::strength::normal_cdf;
 use crate::body::{Direction, JointKind};
 use crate::plan::posture::PostureWork;
@@ -188,8 +188,10 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
                     arm_supported_or_leaning: false,
                     elbow_flexion_deg: arm.elbow_flexion_deg,
                     wrist_flexion_deg: arm.wrist_flexion_deg,
-                    wrist_deviated_or_twisted: thresholds
-                        .wrist_deviated_or_twisted(arm.wrist_deviation_deg, arm.forearm_pronation_deg),
+                    wrist_deviated_or_twisted: thresholds.wrist_deviated_or_twisted(
+                        arm.wrist_deviation_deg,
+                        arm.forearm_pronation_deg,
+                    ),
                 };
                 reba::score(
                     &RebaPosture {
@@ -215,7 +217,8 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
                     &thresholds,
                 )
             });
-            let low = lumbar_load(task, &pw).and_then(|l| low_back(&l, &BackParams::default()).ok());
+            let low =
+                lumbar_load(task, &pw).and_then(|l| low_back(&l, &BackParams::default()).ok());
             let mut capable: Vec<Capable> = task
                 .half_joints
                 .iter()
@@ -225,13 +228,18 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
                         Direction::Positive => tau.max(0.0),
                         Direction::Negative => (-tau).max(0.0),
                     };
-                    if required <= 0.0 || task.model.q_joint(h.q_index).kind == JointKind::Prismatic {
+                    if required <= 0.0 || task.model.q_joint(h.q_index).kind == JointKind::Prismatic
+                    {
                         return None;
                     }
                     let factor = h.posture_factor(q);
                     let share = |s: &crate::body::strength::MeanSd| {
                         if s.sd_nm <= 0.0 {
-                            if s.mean_nm * factor > required { 1.0 } else { 0.0 }
+                            if s.mean_nm * factor > required {
+                                1.0
+                            } else {
+                                0.0
+                            }
                         } else {
                             1.0 - normal_cdf((required / factor - s.mean_nm) / s.sd_nm)
                         }

@@ -422,14 +422,22 @@ pub fn score(p: &RulaPosture, a: &RulaActivity) -> Rula {
         "9a",
         "neck adjustment: twist",
         Some(p.neck_twist_deg),
-        if n_twist { "twisted: +1" } else { "not twisted: +0" },
+        if n_twist {
+            "twisted: +1"
+        } else {
+            "not twisted: +0"
+        },
         i32::from(n_twist),
     ));
     ws.push(step(
         "9b",
         "neck adjustment: side bend",
         Some(p.neck_side_bend_deg),
-        if n_side { "side-bending: +1" } else { "not side-bending: +0" },
+        if n_side {
+            "side-bending: +1"
+        } else {
+            "not side-bending: +0"
+        },
         i32::from(n_side),
     ));
     let neck = (nk0 + i32::from(n_twist) + i32::from(n_side)).clamp(1, 6);

@@ -57,7 +57,8 @@ pub fn variant_params(task: &Task, variant: &Variant) -> Option<Vec<MaParams>> {
         .zip(&task.fatigue)
         .map(|(h, given)| {
             let k_value = set.k(&h.region, sex, Bound::Value);
-            let overridden = given.k_per_min != k_value || given.recovery != set.recovery.recovery();
+            let overridden =
+                given.k_per_min != k_value || given.recovery != set.recovery.recovery();
             if overridden {
                 return *given;
             }
@@ -98,7 +99,13 @@ pub struct Sensitivity {
 pub const METHOD: &str = "the plan's postures replayed with each parameter at the low and high end of its documented range, and with all three at the fastest- and slowest-tiring corner";
 
 /// The key results of `plan` under one parameter variant.
-pub fn outcome(task: &Task, plan: &Plan, floor: f64, variant: &Variant, params: &[MaParams]) -> Outcome {
+pub fn outcome(
+    task: &Task,
+    plan: &Plan,
+    floor: f64,
+    variant: &Variant,
+    params: &[MaParams],
+) -> Outcome {
     let m = meaning_with(task, plan, params);
     let r = replay_plan(plan, params);
     let rest = rest_advice_with(task, plan, floor, params);

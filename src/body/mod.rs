@@ -13,11 +13,11 @@ pub mod strength;
 pub mod worker;
 
 pub use model::{BodyError, BodyModel, Capsule, Joint, JointKind, Link, LinkBox};
-pub use report::{statics_report, StaticsReport};
-pub use stance::{ground_reaction, Foot, GroundReaction, Stance};
+pub use report::{StaticsReport, statics_report};
+pub use stance::{Foot, GroundReaction, Stance, ground_reaction};
 pub use statics::{
-    apply_loads, forward_kinematics, holding_torque_derivative, holding_torques, mass_moments,
-    PointLoad, StaticsData, GRAVITY_M_S2,
+    GRAVITY_M_S2, PointLoad, StaticsData, apply_loads, forward_kinematics,
+    holding_torque_derivative, holding_torques, mass_moments,
 };
-pub use strength::{resolve_half_joints, Direction, HalfJoint, StrengthError, StrengthTable};
-pub use worker::{worker_urdf, Sex, Worker, WorkerError};
+pub use strength::{Direction, HalfJoint, StrengthError, StrengthTable, resolve_half_joints};
+pub use worker::{Sex, Worker, WorkerError, worker_urdf};

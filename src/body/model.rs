@@ -205,7 +205,10 @@ impl BodyModel {
             if !finite3(xyz) || !finite3(rpy) || xyz.iter().any(|x| x.abs() > MAX_OFFSET_M) {
                 return Err(invalid(
                     format!("link '{}' <inertial><origin>", l.name),
-                    format!("must be finite and within {MAX_OFFSET_M} m, got {:?}", xyz.0),
+                    format!(
+                        "must be finite and within {MAX_OFFSET_M} m, got {:?}",
+                        xyz.0
+                    ),
                 ));
             }
             let mut capsules = Vec::new();
@@ -223,10 +226,15 @@ impl BodyModel {
                     // longer: conservative for clearance). Spheres are capsules of zero length.
                     urdf_rs::Geometry::Capsule { radius, length }
                     | urdf_rs::Geometry::Cylinder { radius, length } => {
-                        if !(size_ok(radius) && length.is_finite() && (0.0..=MAX_SHAPE_SIZE_M).contains(&length)) {
+                        if !(size_ok(radius)
+                            && length.is_finite()
+                            && (0.0..=MAX_SHAPE_SIZE_M).contains(&length))
+                        {
                             return Err(invalid(
                                 el(),
-                                format!("capsule/cylinder radius must be in (0, {MAX_SHAPE_SIZE_M}] m and length in [0, {MAX_SHAPE_SIZE_M}] m, got {radius}, {length}"),
+                                format!(
+                                    "capsule/cylinder radius must be in (0, {MAX_SHAPE_SIZE_M}] m and length in [0, {MAX_SHAPE_SIZE_M}] m, got {radius}, {length}"
+                                ),
                             ));
                         }
                         // URDF capsules (like cylinders) lie along the z axis of their origin frame.
@@ -238,24 +246,45 @@ impl BodyModel {
                     }
                     urdf_rs::Geometry::Sphere { radius } => {
                         if !size_ok(radius) {
-                            return Err(invalid(el(), format!("sphere radius must be in (0, {MAX_SHAPE_SIZE_M}] m, got {radius}")));
+                            return Err(invalid(
+                                el(),
+                                format!(
+                                    "sphere radius must be in (0, {MAX_SHAPE_SIZE_M}] m, got {radius}"
+                                ),
+                            ));
                         }
                         let p = iso * Point3::origin();
-                        capsules.push(Capsule { a: p, b: p, radius_m: radius });
+                        capsules.push(Capsule {
+                            a: p,
+                            b: p,
+                            radius_m: radius,
+                        });
                     }
                     urdf_rs::Geometry::Box { ref size } => {
                         if !size.iter().all(|&x| size_ok(x)) {
-                            return Err(invalid(el(), format!("box size must be in (0, {MAX_SHAPE_SIZE_M}] m, got {:?}", size.0)));
+                            return Err(invalid(
+                                el(),
+                                format!(
+                                    "box size must be in (0, {MAX_SHAPE_SIZE_M}] m, got {:?}",
+                                    size.0
+                                ),
+                            ));
                         }
                         boxes.push(LinkBox {
                             link_from_box: iso,
-                            half_extents_m: Vector3::new(size[0] / 2.0, size[1] / 2.0, size[2] / 2.0),
+                            half_extents_m: Vector3::new(
+                                size[0] / 2.0,
+                                size[1] / 2.0,
+                                size[2] / 2.0,
+                            ),
                         });
                     }
                     urdf_rs::Geometry::Mesh { ref filename, .. } => {
                         return Err(invalid(
                             el(),
-                            format!("mesh collision geometry ('{filename}') is not supported: use box, cylinder, capsule or sphere shapes for collision"),
+                            format!(
+                                "mesh collision geometry ('{filename}') is not supported: use box, cylinder, capsule or sphere shapes for collision"
+                            ),
                         ));
                     }
                 }
@@ -290,7 +319,7 @@ impl BodyModel {
                             "unsupported type '{}' (revolute, continuous, prismatic or fixed)",
                             format!("{other:?}").to_lowercase()
                         ),
-                    ))
+                    ));
                 }
             };
             let parent = *link_index.get(&j.parent.link).ok_or_else(|| {
@@ -327,7 +356,10 @@ impl BodyModel {
             {
                 return Err(invalid(
                     format!("joint '{}' <origin>", j.name),
-                    format!("must be finite and within {MAX_OFFSET_M} m, got {:?}", j.origin.xyz.0),
+                    format!(
+                        "must be finite and within {MAX_OFFSET_M} m, got {:?}",
+                        j.origin.xyz.0
+                    ),
                 ));
             }
             if kind != JointKind::Fixed {
@@ -352,7 +384,14 @@ impl BodyModel {
         }
         if roots.len() > 1 {
             let names: Vec<&str> = roots.iter().map(|&l| links[l].name.as_str()).collect();
-            return Err(invalid("robot".into(), format!("must have one root link, found {}: {} (a joint is missing, or the joints form a cycle)", names.len(), names.join(", "))));
+            return Err(invalid(
+                "robot".into(),
+                format!(
+                    "must have one root link, found {}: {} (a joint is missing, or the joints form a cycle)",
+                    names.len(),
+                    names.join(", ")
+                ),
+            ));
         }
 
         // Topological order: depth-first preorder from the root, so that along a chain each
@@ -410,7 +449,9 @@ impl BodyModel {
             {
                 return Err(invalid(
                     format!("joint '{}' <limit>", j.name),
-                    format!("a prismatic joint's limits must be within ±{MAX_OFFSET_M} m, got {lower}..{upper}"),
+                    format!(
+                        "a prismatic joint's limits must be within ±{MAX_OFFSET_M} m, got {lower}..{upper}"
+                    ),
                 ));
             }
             if moving && joint_of_q.len() >= MAX_MOVING_JOINTS {

@@ -5,8 +5,8 @@
 //! any other body hangs from its root.
 
 use super::model::{BodyError, BodyModel};
-use super::stance::{foot_loads, ground_reaction, settle_internal_force, Foot, Stance};
-use super::statics::{apply_loads, forward_kinematics, mass_moments, PointLoad, StaticsData};
+use super::stance::{Foot, Stance, foot_loads, ground_reaction, settle_internal_force};
+use super::statics::{PointLoad, StaticsData, apply_loads, forward_kinematics, mass_moments};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -50,7 +50,14 @@ pub struct StaticsReport {
 }
 
 /// The generated worker's floating-pelvis joints (no muscles: the floor holds the body).
-const PELVIS: [&str; 6] = ["pelvis_tx", "pelvis_ty", "pelvis_tz", "pelvis_rotation", "pelvis_list", "pelvis_tilt"];
+const PELVIS: [&str; 6] = [
+    "pelvis_tx",
+    "pelvis_ty",
+    "pelvis_tz",
+    "pelvis_rotation",
+    "pelvis_list",
+    "pelvis_tilt",
+];
 
 /// A stance under the feet of `model` at posture `q`, when it has feet and a floating pelvis.
 fn standing(model: &BodyModel, data: &StaticsData) -> Option<Stance> {
@@ -95,7 +102,11 @@ pub fn statics_report(
     let mut without = vec![0.0; model.nq()];
     let mut floor = None;
     for pass in 0..2 {
-        let force = if pass == 0 { Vector3::zeros() } else { force_on_hand_n };
+        let force = if pass == 0 {
+            Vector3::zeros()
+        } else {
+            force_on_hand_n
+        };
         let hand_load = PointLoad::force_at(hand, force);
         let mut loads = vec![hand_load];
         if let Some(st) = &stance {

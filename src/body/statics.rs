@@ -159,12 +159,12 @@ impl StaticsData {
     pub fn angular_jacobian(&self, model: &BodyModel, l: usize, out: &mut Matrix3xX<f64>) {
         let body = model.link_in_body[l].body;
         for k in 0..model.nq() {
-            let col = if model.q_moves_body(k, body) && model.q_joint(k).kind != JointKind::Prismatic
-            {
-                self.axis_w[k]
-            } else {
-                Vector3::zeros()
-            };
+            let col =
+                if model.q_moves_body(k, body) && model.q_joint(k).kind != JointKind::Prismatic {
+                    self.axis_w[k]
+                } else {
+                    Vector3::zeros()
+                };
             out.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
         }
     }
@@ -315,7 +315,9 @@ pub fn mass_moments(model: &BodyModel, data: &mut StaticsData) {
             (av, av * inv_m)
         };
         data.a_cross_v[k] = av;
-        data.com_jacobian.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+        data.com_jacobian
+            .fixed_view_mut::<3, 1>(0, k)
+            .copy_from(&col);
     }
 }
 
@@ -417,7 +419,8 @@ pub fn holding_torque_derivative(model: &BodyModel, data: &mut StaticsData) {
                 (false, false) if in_subtree => {
                     let mut d = data.a_cross_v[col].dot(&data.a_cross_g[row]);
                     for e in 0..ne {
-                        d += data.a_cross_w[col * stride + e].dot(&data.a_cross_f[row * stride + e]);
+                        d +=
+                            data.a_cross_w[col * stride + e].dot(&data.a_cross_f[row * stride + e]);
                     }
                     d
                 }

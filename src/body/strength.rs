@@ -223,13 +223,20 @@ impl StrengthTable {
                 if !c.deg.iter().all(|x| x.is_finite()) || c.deg.windows(2).any(|w| w[1] <= w[0]) {
                     return Err(bad(at("deg must be finite and strictly increasing")));
                 }
-                if !c.factor.iter().all(|x| x.is_finite() && *x > 0.0 && *x <= 10.0) {
+                if !c
+                    .factor
+                    .iter()
+                    .all(|x| x.is_finite() && *x > 0.0 && *x <= 10.0)
+                {
                     return Err(bad(at("factor values must be within 0..10 and > 0")));
                 }
             }
             for (name, _) in e.side_names() {
                 if !seen.insert((name.clone(), e.direction)) {
-                    return Err(bad(format!("{name}{} is listed twice", e.direction.symbol())));
+                    return Err(bad(format!(
+                        "{name}{} is listed twice",
+                        e.direction.symbol()
+                    )));
                 }
             }
         }
@@ -258,7 +265,11 @@ impl StrengthTable {
     }
 
     /// The entry for a full joint name (with side prefix) and direction, with its side.
-    pub fn entry(&self, joint: &str, dir: Direction) -> Option<(&StrengthEntry, Option<TableSide>)> {
+    pub fn entry(
+        &self,
+        joint: &str,
+        dir: Direction,
+    ) -> Option<(&StrengthEntry, Option<TableSide>)> {
         self.half_joints
             .iter()
             .filter(|e| e.direction == dir)
@@ -352,14 +363,16 @@ impl Pchip {
             -2.0 * s3 + 3.0 * s2,
             s3 - s2,
         );
-        let v = h00 * self.y[i] + h10 * h * self.d[i] + h01 * self.y[i + 1] + h11 * h * self.d[i + 1];
+        let v =
+            h00 * self.y[i] + h10 * h * self.d[i] + h01 * self.y[i + 1] + h11 * h * self.d[i + 1];
         let (d00, d10, d01, d11) = (
             6.0 * s2 - 6.0 * s,
             3.0 * s2 - 4.0 * s + 1.0,
             -6.0 * s2 + 6.0 * s,
             3.0 * s2 - 2.0 * s,
         );
-        let dv = (d00 * self.y[i] + d01 * self.y[i + 1]) / h + d10 * self.d[i] + d11 * self.d[i + 1];
+        let dv =
+            (d00 * self.y[i] + d01 * self.y[i + 1]) / h + d10 * self.d[i] + d11 * self.d[i + 1];
         (v, dv)
     }
 }

@@ -342,7 +342,11 @@ impl Urdf {
             // as capsules: same axis segment and radius).
             let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
             let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0];
+            let mid = [
+                (a[0] + b[0]) / 2.0,
+                (a[1] + b[1]) / 2.0,
+                (a[2] + b[2]) / 2.0,
+            ];
             // rotation taking z to d: pitch about y then roll about x
             let (roll, pitch) = if len > 0.0 {
                 let (x, y, z) = (d[0] / len, d[1] / len, d[2] / len);
@@ -443,7 +447,16 @@ impl Urdf {
             };
             let xyz = if i == 0 { at } else { [0.0; 3] };
             let lim = range_rad(name).expect("every worker joint has a range");
-            self.joint(name, "revolute", &from, &child, xyz, *axis, lim, effort(name));
+            self.joint(
+                name,
+                "revolute",
+                &from,
+                &child,
+                xyz,
+                *axis,
+                lim,
+                effort(name),
+            );
             from = child;
         }
     }
@@ -538,7 +551,12 @@ pub fn worker_urdf(
     let pelvis_chain: [(&str, &str, [f64; 3], (f64, f64)); 6] = [
         ("pelvis_tx", "prismatic", [1.0, 0.0, 0.0], (-0.6, 0.6)),
         ("pelvis_ty", "prismatic", [0.0, 1.0, 0.0], (-0.5, 0.5)),
-        ("pelvis_tz", "prismatic", [0.0, 0.0, 1.0], (-g.hip_height_m, 0.05)),
+        (
+            "pelvis_tz",
+            "prismatic",
+            [0.0, 0.0, 1.0],
+            (-g.hip_height_m, 0.05),
+        ),
         (
             "pelvis_rotation",
             "revolute",

@@ -26,14 +26,16 @@
 //! to the next); their Jacobian rows take the slope over ±0.1 in the log parameters, so a fit
 //! whose optimum sits on a step does not report a collapsed interval.
 
-use super::ma::{MaParams, MaState, Recovery, K_MAX_PER_MIN, K_MIN_PER_MIN};
+use super::ma::{K_MAX_PER_MIN, K_MIN_PER_MIN, MaParams, MaState, Recovery};
 use super::params::{ParameterSet, RecoverySpec, RegionK};
 use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::collections::BTreeMap;
 
 /// Regions a row may name.
-pub const REGIONS: [&str; 9] = ["general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle"];
+pub const REGIONS: [&str; 9] = [
+    "general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle",
+];
 
 /// Longest endurance a prediction may reach \[s\] (24 h).
 pub const MAX_ENDURANCE_S: f64 = 86_400.0;
@@ -63,7 +65,11 @@ pub enum Measured {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FitError {
     #[error("{file}: line {line}: {problem}")]
-    Row { file: String, line: usize, problem: String },
+    Row {
+        file: String,
+        line: usize,
+        problem: String,
+    },
     #[error("{file}: {problem}")]
     Data { file: String, problem: String },
 }
@@ -80,7 +86,15 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
     };
     let headers = rdr.headers().map_err(|e| data_err(e.to_string()))?.clone();
     let col = |name: &str| headers.iter().position(|h| h == name);
-    const KNOWN: [&str; 7] = ["region", "load_fmvc", "on_s", "off_s", "endurance_s", "t_s", "capacity"];
+    const KNOWN: [&str; 7] = [
+        "region",
+        "load_fmvc",
+        "on_s",
+        "off_s",
+        "endurance_s",
+        "t_s",
+        "capacity",
+    ];
     for h in headers.iter() {
         if !KNOWN.contains(&h) {
             return Err(data_err(format!(
@@ -91,9 +105,17 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
         }
     }
     let (Some(c_region), Some(c_load)) = (col("region"), col("load_fmvc")) else {
-        return Err(data_err("the header needs the columns region and load_fmvc".into()));
+        return Err(data_err(
+            "the header needs the columns region and load_fmvc".into(),
+        ));
     };
-    let (c_on, c_off, c_end, c_t, c_cap) = (col("on_s"), col("off_s"), col("endurance_s"), col("t_s"), col("capacity"));
+    let (c_on, c_off, c_end, c_t, c_cap) = (
+        col("on_s"),
+        col("off_s"),
+        col("endurance_s"),
+        col("t_s"),
+        col("capacity"),
+    );
     let mut rows = Vec::new();
     for (i, rec) in rdr.records().enumerate() {
         // the file's own line (blank lines skipped by the reader count too)
@@ -135,7 +157,8 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
                 crate::schema::did_you_mean(&region, REGIONS.iter().copied())
             )));
         }
-        let load = get(Some(c_load), "load_fmvc")?.ok_or_else(|| bad("load_fmvc is empty".into()))?;
+        let load =
+            get(Some(c_load), "load_fmvc")?.ok_or_else(|| bad("load_fmvc is empty".into()))?;
         if !(load > 0.0 && load <= 1.0) {
             return Err(bad(format!("load_fmvc must be in (0, 1], got {load}")));
         }
@@ -143,18 +166,37 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
         let off = get(c_off, "off_s")?;
         let cycle_s = match (on, off) {
             (None, None) | (Some(_), None) | (_, Some(0.0)) => None,
-            (Some(a), Some(b)) if a > 0.0 && b > 0.0 && a <= MAX_ENDURANCE_S && b <= MAX_ENDURANCE_S => Some((a, b)),
+            (Some(a), Some(b))
+                if a > 0.0 && b > 0.0 && a <= MAX_ENDURANCE_S && b <= MAX_ENDURANCE_S =>
+            {
+                Some((a, b))
+            }
             (None, Some(_)) => return Err(bad("off_s needs on_s".into())),
-            (Some(a), Some(b)) => return Err(bad(format!("on_s and off_s must be in (0, 86400] s, got {a} and {b}"))),
+            (Some(a), Some(b)) => {
+                return Err(bad(format!(
+                    "on_s and off_s must be in (0, 86400] s, got {a} and {b}"
+                )));
+            }
         };
-        let what = match (get(c_end, "endurance_s")?, get(c_t, "t_s")?, get(c_cap, "capacity")?) {
+        let what = match (
+            get(c_end, "endurance_s")?,
+            get(c_t, "t_s")?,
+            get(c_cap, "capacity")?,
+        ) {
             (Some(e), None, None) if e > 0.0 && e <= MAX_ENDURANCE_S => Measured::EnduranceS(e),
-            (Some(e), None, None) => return Err(bad(format!("endurance_s must be in (0, 86400] s, got {e}"))),
+            (Some(e), None, None) => {
+                return Err(bad(format!("endurance_s must be in (0, 86400] s, got {e}")));
+            }
             (None, Some(t), Some(c)) if t > 0.0 && t <= MAX_ENDURANCE_S && c > 0.0 && c <= 1.0 => {
-                Measured::Capacity { t_s: t, capacity: c }
+                Measured::Capacity {
+                    t_s: t,
+                    capacity: c,
+                }
             }
             (None, Some(t), Some(c)) => {
-                return Err(bad(format!("t_s must be in (0, 86400] s and capacity in (0, 1], got {t} and {c}")));
+                return Err(bad(format!(
+                    "t_s must be in (0, 86400] s and capacity in (0, 1], got {t} and {c}"
+                )));
             }
             _ => return Err(bad("give endurance_s, or t_s and capacity".into())),
         };
@@ -296,7 +338,9 @@ impl Problem<'_> {
     fn params(&self, theta: &[f64], g: usize) -> MaParams {
         let k = theta[g].exp().clamp(K_MIN_PER_MIN, K_MAX_PER_MIN);
         let rest = if self.fit_rest {
-            theta[self.regions.len()].exp().min(super::ma::R_MAX_PER_MIN)
+            theta[self.regions.len()]
+                .exp()
+                .min(super::ma::R_MAX_PER_MIN)
         } else {
             self.opts.rest_per_min
         };
@@ -308,7 +352,10 @@ impl Problem<'_> {
         } else {
             Recovery::None
         };
-        MaParams { k_per_min: k, recovery }
+        MaParams {
+            k_per_min: k,
+            recovery,
+        }
     }
 
     fn residuals(&self, theta: &[f64], out: &mut [f64]) {
@@ -350,7 +397,9 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     if n <= np {
         return Err(FitError::Data {
             file: source.to_string(),
-            problem: format!("{n} measurements cannot fit {np} parameters with confidence intervals: give more rows than parameters"),
+            problem: format!(
+                "{n} measurements cannot fit {np} parameters with confidence intervals: give more rows than parameters"
+            ),
         });
     }
     // start: k from each region's rows by the closed form of a sustained hold without recovery
@@ -368,7 +417,11 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
             })
             .filter(|k| k.is_finite() && *k > 0.0)
             .collect();
-        let k0 = if ks.is_empty() { 1.0 } else { ks.iter().map(|k| k.ln()).sum::<f64>() / ks.len() as f64 };
+        let k0 = if ks.is_empty() {
+            1.0
+        } else {
+            ks.iter().map(|k| k.ln()).sum::<f64>() / ks.len() as f64
+        };
         theta[g] = k0.clamp(K_MIN_PER_MIN.ln(), K_MAX_PER_MIN.ln());
     }
     if fit_rest {
@@ -443,7 +496,10 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     // (several periods' steps averaged), the smooth rows their local derivative.
     jacobian(&theta, &mut jac, &mut r2, 1e-6);
     let stepped: Vec<usize> = (0..n)
-        .filter(|&i| matches!(rows[i].what, Measured::EnduranceS(_)) && rows[i].cycle_s.is_some_and(|(_, off)| off > 0.0))
+        .filter(|&i| {
+            matches!(rows[i].what, Measured::EnduranceS(_))
+                && rows[i].cycle_s.is_some_and(|(_, off)| off > 0.0)
+        })
         .collect();
     if !stepped.is_empty() {
         let mut wide = nalgebra::DMatrix::<f64>::zeros(n, np);
@@ -455,9 +511,13 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     let dof = (n - np) as f64;
     let s2 = cost / dof;
     let cov = (jac.transpose() * &jac).try_inverse();
-    let t = StudentsT::new(0.0, 1.0, dof).map(|d| d.inverse_cdf(0.975)).unwrap_or(1.96);
+    let t = StudentsT::new(0.0, 1.0, dof)
+        .map(|d| d.inverse_cdf(0.975))
+        .unwrap_or(1.96);
     let est = |j: usize| {
-        let se = cov.as_ref().map_or(f64::INFINITY, |c| (s2 * c[(j, j)].max(0.0)).sqrt());
+        let se = cov
+            .as_ref()
+            .map_or(f64::INFINITY, |c| (s2 * c[(j, j)].max(0.0)).sqrt());
         let v = theta[j];
         Estimate {
             value: v.exp(),
@@ -475,8 +535,12 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
                 region: name.clone(),
                 rows: idx.len(),
                 k_per_min: est(g),
-                rms_log_error: (idx.iter().map(|&i| r[i] * r[i]).sum::<f64>() / idx.len() as f64).sqrt(),
-                max_relative_error: idx.iter().map(|&i| (r[i].exp() - 1.0).abs()).fold(0.0, f64::max),
+                rms_log_error: (idx.iter().map(|&i| r[i] * r[i]).sum::<f64>() / idx.len() as f64)
+                    .sqrt(),
+                max_relative_error: idx
+                    .iter()
+                    .map(|&i| (r[i].exp() - 1.0).abs())
+                    .fold(0.0, f64::max),
             }
         })
         .collect();
@@ -531,9 +595,15 @@ impl Fit {
             RecoverySpec::None => (0.0, 0.0, self.limit_fmvc, self.limit_fmvc),
         };
         let (rl, rh) = if self.rest_fitted {
-            (self.rest_per_min.low, self.rest_per_min.high.min(super::ma::R_MAX_PER_MIN))
+            (
+                self.rest_per_min.low,
+                self.rest_per_min.high.min(super::ma::R_MAX_PER_MIN),
+            )
         } else {
-            (rest_low.min(self.rest_per_min.value), rest_high.max(self.rest_per_min.value))
+            (
+                rest_low.min(self.rest_per_min.value),
+                rest_high.max(self.rest_per_min.value),
+            )
         };
         ParameterSet {
             name: "fitted".into(),
@@ -549,7 +619,10 @@ impl Fit {
                 limit_low: limit_low.min(self.limit_fmvc),
                 limit_high: limit_high.max(self.limit_fmvc),
             },
-            k_source: format!("fit to {} (95 % confidence intervals as ranges)", self.source),
+            k_source: format!(
+                "fit to {} (95 % confidence intervals as ranges)",
+                self.source
+            ),
             regions,
             female,
             male,

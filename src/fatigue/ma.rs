@@ -144,7 +144,9 @@ impl Default for MaState {
 /// Why a parameter set or a load was refused.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FatigueError {
-    #[error("fatigue rate k must be finite and within {K_MIN_PER_MIN}..{K_MAX_PER_MIN} 1/min, got {0}")]
+    #[error(
+        "fatigue rate k must be finite and within {K_MIN_PER_MIN}..{K_MAX_PER_MIN} 1/min, got {0}"
+    )]
     BadK(f64),
     #[error("recovery rate must be finite and within 0..{R_MAX_PER_MIN} 1/min, got {0}")]
     BadR(f64),
@@ -159,7 +161,6 @@ pub enum FatigueError {
 /// Smallest capacity the state keeps, so that c stays in (0, 1] even after absurdly long holds.
 const C_FLOOR: f64 = f64::MIN_POSITIVE;
 
-
 /// Exact capacity and U increment of holding `f` for `t_min` from capacity `c0`, with fatigue
 /// rate `k` and recovery rate `r` (both per minute, `r` the rate for this load).
 /// Returns `(c1, ΔU)`; ΔU may be infinite when it exceeds a double.
@@ -169,7 +170,10 @@ pub fn step_exact(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> (f64, f64) {
         return (c0, 0.0);
     }
     let (c1, du) = super::schedule::Prepared::from_rates(k, f, r, t_min).apply(c0);
-    (c1.clamp(C_FLOOR, 1.0), if f == 0.0 { 0.0 } else { du.max(0.0) })
+    (
+        c1.clamp(C_FLOOR, 1.0),
+        if f == 0.0 { 0.0 } else { du.max(0.0) },
+    )
 }
 
 impl MaParams {

@@ -18,8 +18,10 @@ pub mod stats;
 pub mod three_compartment;
 pub mod units;
 
-pub use held_load::{met_report, HeldLoad, MetReport};
-pub use ma::{hold_all, met_min, step_exact, CurvePoint, FatigueError, MaParams, MaState, Recovery};
+pub use held_load::{HeldLoad, MetReport, met_report};
+pub use ma::{
+    CurvePoint, FatigueError, MaParams, MaState, Recovery, hold_all, met_min, step_exact,
+};
 pub use three_compartment::{Region, ThreeCompartment, ThreeCompartmentState};
 
 /// A fatigue model behind one interface: hold a relative load for a while, read capacity and U.

@@ -85,7 +85,8 @@ pub struct ParameterSets {
 impl ParameterSets {
     /// The shipped sets (`data/fatigue_sets.yaml`).
     pub fn shipped() -> Self {
-        let f: SetsFile = serde_saphyr::from_str(SETS_YAML).expect("the shipped parameter sets parse");
+        let f: SetsFile =
+            serde_saphyr::from_str(SETS_YAML).expect("the shipped parameter sets parse");
         ParameterSets {
             default_set: f.default_set,
             sets: f.sets,
@@ -110,10 +111,15 @@ impl ParameterSet {
     /// recovery's values within theirs. `origin` names the text in messages.
     pub fn from_yaml_str(text: &str, origin: &str) -> Result<Self, String> {
         use super::ma::{K_MAX_PER_MIN, K_MIN_PER_MIN, R_MAX_PER_MIN};
-        let set: ParameterSet = serde_saphyr::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
+        let set: ParameterSet =
+            serde_saphyr::from_str(text).map_err(|e| format!("{origin}: {e}"))?;
         let known = super::fit::REGIONS;
         let k_ok = |v: f64| v.is_finite() && (K_MIN_PER_MIN..=K_MAX_PER_MIN).contains(&v);
-        for (scope, map) in [("regions", &set.regions), ("female", &set.female), ("male", &set.male)] {
+        for (scope, map) in [
+            ("regions", &set.regions),
+            ("female", &set.female),
+            ("male", &set.male),
+        ] {
             for (name, r) in map {
                 if !known.contains(&name.as_str()) {
                     return Err(format!(
@@ -122,7 +128,12 @@ impl ParameterSet {
                         crate::schema::did_you_mean(name, known.iter().copied())
                     ));
                 }
-                if !(k_ok(r.k) && k_ok(r.k_low) && k_ok(r.k_high) && r.k_low <= r.k && r.k <= r.k_high) {
+                if !(k_ok(r.k)
+                    && k_ok(r.k_low)
+                    && k_ok(r.k_high)
+                    && r.k_low <= r.k
+                    && r.k <= r.k_high)
+                {
                     return Err(format!(
                         "{origin}: {scope}.{name}: need {K_MIN_PER_MIN} <= k_low <= k <= k_high <= {K_MAX_PER_MIN} 1/min, got {} <= {} <= {}",
                         r.k_low, r.k, r.k_high
@@ -141,11 +152,25 @@ impl ParameterSet {
         {
             let r_ok = |v: f64| v.is_finite() && (0.0..=R_MAX_PER_MIN).contains(&v);
             let l_ok = |v: f64| v.is_finite() && (0.01..=1.0).contains(&v);
-            if !(r_ok(rest_per_min) && r_ok(rest_low) && r_ok(rest_high) && rest_low <= rest_per_min && rest_per_min <= rest_high) {
-                return Err(format!("{origin}: recovery: need 0 <= rest_low <= rest_per_min <= rest_high <= {R_MAX_PER_MIN} 1/min"));
+            if !(r_ok(rest_per_min)
+                && r_ok(rest_low)
+                && r_ok(rest_high)
+                && rest_low <= rest_per_min
+                && rest_per_min <= rest_high)
+            {
+                return Err(format!(
+                    "{origin}: recovery: need 0 <= rest_low <= rest_per_min <= rest_high <= {R_MAX_PER_MIN} 1/min"
+                ));
             }
-            if !(l_ok(limit_fmvc) && l_ok(limit_low) && l_ok(limit_high) && limit_low <= limit_fmvc && limit_fmvc <= limit_high) {
-                return Err(format!("{origin}: recovery: need 0.01 <= limit_low <= limit_fmvc <= limit_high <= 1"));
+            if !(l_ok(limit_fmvc)
+                && l_ok(limit_low)
+                && l_ok(limit_high)
+                && limit_low <= limit_fmvc
+                && limit_fmvc <= limit_high)
+            {
+                return Err(format!(
+                    "{origin}: recovery: need 0.01 <= limit_low <= limit_fmvc <= limit_high <= 1"
+                ));
             }
         }
         Ok(set)
@@ -226,10 +251,15 @@ mod tests {
         let s = ParameterSets::shipped();
         assert!(s.get(&s.default_set).is_some());
         for set in &s.sets {
-            for region in ["general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle"] {
+            for region in [
+                "general", "trunk", "neck", "shoulder", "elbow", "grip", "hip", "knee", "ankle",
+            ] {
                 let k = set.k(region, Sex::Male, Bound::Value);
                 assert!(k > 0.0 && set.k(region, Sex::Male, Bound::Low) <= k);
-                assert!(set.k(region, Sex::Female, Bound::High) >= set.k(region, Sex::Female, Bound::Value));
+                assert!(
+                    set.k(region, Sex::Female, Bound::High)
+                        >= set.k(region, Sex::Female, Bound::Value)
+                );
             }
         }
         let d = s.get("default-2026").unwrap();

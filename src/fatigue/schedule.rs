@@ -300,7 +300,10 @@ pub fn repeated_cycles<T: Real>(
         // so far past exhaustion and are dropped).
         let (ln_u, ln_c) = log_domain_cycles(&cycle, c0, n_cycles);
         return CyclesOutcome {
-            u_min: ScaledU { u: T::cst(1.0), ln_scale: ln_u },
+            u_min: ScaledU {
+                u: T::cst(1.0),
+                ln_scale: ln_u,
+            },
             capacity_end: T::cst(ln_c.exp()),
         };
     }
@@ -313,7 +316,11 @@ pub fn repeated_cycles<T: Real>(
 /// `ln(e^x + e^y)`.
 fn ln_add(x: f64, y: f64) -> f64 {
     let (hi, lo) = if x >= y { (x, y) } else { (y, x) };
-    if lo == f64::NEG_INFINITY { hi } else { hi + (lo - hi).exp().ln_1p() }
+    if lo == f64::NEG_INFINITY {
+        hi
+    } else {
+        hi + (lo - hi).exp().ln_1p()
+    }
 }
 
 /// The cycles held one by one with U and capacity in logarithms: `(ln U, ln c_end)`.
@@ -404,12 +411,7 @@ pub fn lowest_end_capacity<T: Real>(
 }
 
 /// Without recovery: `u(c) = u(1)/c²`, `c_n = c_0 Aⁿ`, total `u(1)/c0² · (e^{2NL} − 1)/(e^{2L} − 1)`.
-fn no_recovery_total<T: Real>(
-    cycle: &Cycle<T>,
-    c0: T,
-    ln_a: T,
-    n_cycles: u64,
-) -> CyclesOutcome<T> {
+fn no_recovery_total<T: Real>(cycle: &Cycle<T>, c0: T, ln_a: T, n_cycles: u64) -> CyclesOutcome<T> {
     let (u1, _) = cycle.run(T::cst(1.0));
     let l2 = -ln_a * 2.0; // 2L
     let n = n_cycles as f64;
@@ -465,7 +467,11 @@ fn euler_maclaurin_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, ln_a: T,
     let ln_hi = (delta * sign).ln();
     let ln_lo_full = ln_hi + ln_a * (mf - 1.0);
     let cut = (1e-14 * c_star.val().max(f64::MIN_POSITIVE)).ln();
-    let ln_lo = if ln_lo_full.val() < cut { T::cst(cut.min(ln_hi.val())) } else { ln_lo_full };
+    let ln_lo = if ln_lo_full.val() < cut {
+        T::cst(cut.min(ln_hi.val()))
+    } else {
+        ln_lo_full
+    };
     let width = (ln_hi - ln_lo).val();
     let panels = ((width / 0.5).ceil() as usize).clamp(1, 4000);
     let step = (ln_hi - ln_lo) / panels as f64;
@@ -507,7 +513,6 @@ fn euler_maclaurin_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, ln_a: T,
     // Euler–Maclaurin to the B₄ term: + (φ'(b) − φ'(a))/12 − (φ'''(b) − φ'''(a))/720.
     integral + (phi0 + phi1) * 0.5 + (dphi1 - dphi0) / 12.0 - (d3phi(y1) - d3phi(y0)) / 720.0
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -567,7 +572,11 @@ mod tests {
                             (total - u).abs() <= 2e-6 * u.max(1e-12),
                             "{p:?} {steps:?} n={n} c0={c0}: {total} vs {u}"
                         );
-                        assert!((r.capacity_end - c).abs() < 1e-9, "capacity {} vs {c}", r.capacity_end);
+                        assert!(
+                            (r.capacity_end - c).abs() < 1e-9,
+                            "capacity {} vs {c}",
+                            r.capacity_end
+                        );
                     }
                 }
             }
@@ -580,15 +589,36 @@ mod tests {
             for &f in &[0.0, 0.07, 0.19, 0.35] {
                 let run = |x: Dual2| {
                     let hs = [
-                        HeldStep { f: Dual2 { v: 0.2, d: 0.0, dd: 0.0 }, t_min: 0.05 },
+                        HeldStep {
+                            f: Dual2 {
+                                v: 0.2,
+                                d: 0.0,
+                                dd: 0.0,
+                            },
+                            t_min: 0.05,
+                        },
                         HeldStep { f: x, t_min: 0.04 },
-                        HeldStep { f: Dual2 { v: 0.0, d: 0.0, dd: 0.0 }, t_min: 0.1 },
+                        HeldStep {
+                            f: Dual2 {
+                                v: 0.0,
+                                d: 0.0,
+                                dd: 0.0,
+                            },
+                            t_min: 0.1,
+                        },
                     ];
                     repeated_cycles(&p, &hs, 0.9, 300).u_min.u
                 };
                 let d = run(Dual2::variable(f));
                 let h = 1e-5;
-                let v = |x: f64| run(Dual2 { v: x, d: 0.0, dd: 0.0 }).v;
+                let v = |x: f64| {
+                    run(Dual2 {
+                        v: x,
+                        d: 0.0,
+                        dd: 0.0,
+                    })
+                    .v
+                };
                 let (vp, vm) = (v(f + h), v(f - h));
                 // central differences, or second-order one-sided ones at f = 0
                 let fd1 = if f > h {
@@ -596,10 +626,18 @@ mod tests {
                 } else {
                     (-3.0 * d.v + 4.0 * vp - v(f + 2.0 * h)) / (2.0 * h)
                 };
-                assert!((d.d - fd1).abs() <= 1e-5 * fd1.abs().max(1e-6), "{p:?} f={f}: {} vs {fd1}", d.d);
+                assert!(
+                    (d.d - fd1).abs() <= 1e-5 * fd1.abs().max(1e-6),
+                    "{p:?} f={f}: {} vs {fd1}",
+                    d.d
+                );
                 if f > h {
                     let fd2 = (vp - 2.0 * d.v + vm) / (h * h);
-                    assert!((d.dd - fd2).abs() <= 1e-3 * fd2.abs().max(1.0), "{p:?} f={f}: {} vs {fd2}", d.dd);
+                    assert!(
+                        (d.dd - fd2).abs() <= 1e-3 * fd2.abs().max(1.0),
+                        "{p:?} f={f}: {} vs {fd2}",
+                        d.dd
+                    );
                 }
             }
         }
@@ -608,12 +646,18 @@ mod tests {
     #[test]
     fn paper_model_long_shift_scales_instead_of_overflowing() {
         let p = MaParams::default();
-        let hs = [HeldStep { f: 0.5, t_min: 0.5 }, HeldStep { f: 0.0, t_min: 0.1 }];
+        let hs = [
+            HeldStep { f: 0.5, t_min: 0.5 },
+            HeldStep { f: 0.0, t_min: 0.1 },
+        ];
         let r = repeated_cycles(&p, &hs, 1.0, 8 * 100);
         // ln U = ln(u(1)) + 2NL − ln(e^{2L} − 1) with u(1) = (e^{2kft} − 1)/2k, L = kft
         let l = 0.25f64;
         let expected = ((2.0 * l).exp_m1() / 2.0).ln() + 2.0 * 800.0 * l - (2.0 * l).exp_m1().ln();
         let got = r.u_min.u.ln() + r.u_min.ln_scale;
-        assert!((got - expected).abs() < 1e-9 * expected, "{got} vs {expected}");
+        assert!(
+            (got - expected).abs() < 1e-9 * expected,
+            "{got} vs {expected}"
+        );
     }
 }

@@ -19,6 +19,6 @@ pub mod search;
 pub mod sqp;
 pub mod task;
 
-pub use planner::{plan_task, plan_task_with, PlanError, PlanOptions, Planner};
+pub use planner::{PlanError, PlanOptions, Planner, plan_task, plan_task_with};
 pub use result::Plan;
 pub use task::{Task, TaskError, TaskFile};

@@ -29,9 +29,9 @@
 //! twist about 1.2 %.
 
 use super::task::Task;
-use crate::fatigue::dual::Dual2;
-use crate::fatigue::schedule::{lowest_end_capacity, repeated_cycles, HeldStep};
 use crate::fatigue::MaState;
+use crate::fatigue::dual::Dual2;
+use crate::fatigue::schedule::{HeldStep, lowest_end_capacity, repeated_cycles};
 
 /// ε of `J = ln(S + ε)` \[min\].
 pub const EPSILON_U_MIN: f64 = 1e-3;
@@ -133,7 +133,12 @@ impl<'t> FatigueCost<'t> {
             self.scratch.push(HeldStep { f: load, t_min });
         }
         let st = self.state[h];
-        let r = repeated_cycles(&self.task.fatigue[h], &self.scratch, st.capacity, self.cycles);
+        let r = repeated_cycles(
+            &self.task.fatigue[h],
+            &self.scratch,
+            st.capacity,
+            self.cycles,
+        );
         let s = r.u_min.ln_scale;
         let u0 = st.fatigue_u_min * (-s).exp();
         (
@@ -150,7 +155,14 @@ impl<'t> FatigueCost<'t> {
         (0..self.step_loads.len())
             .map(|h| {
                 let f = self.group_load(h);
-                let (u, s) = self.total(h, Dual2 { v: f, d: 0.0, dd: 0.0 });
+                let (u, s) = self.total(
+                    h,
+                    Dual2 {
+                        v: f,
+                        d: 0.0,
+                        dd: 0.0,
+                    },
+                );
                 u.v * s.exp()
             })
             .collect()
@@ -234,7 +246,14 @@ impl LoadCost for FatigueCost<'_> {
         let n = f.len();
         let terms: Vec<(f64, f64)> = (0..n)
             .map(|h| {
-                let (u, s) = self.total(h, Dual2 { v: f[h], d: 0.0, dd: 0.0 });
+                let (u, s) = self.total(
+                    h,
+                    Dual2 {
+                        v: f[h],
+                        d: 0.0,
+                        dd: 0.0,
+                    },
+                );
                 (u.v, s)
             })
             .collect();
@@ -416,7 +435,8 @@ mod tests {
         assert!((end_penalty(1.0, (true, true)).0 - 1.0).abs() < 1e-15);
         let h = 1e-6;
         for &u in &[0.03, 0.95, 0.099] {
-            let fd = (end_penalty(u + h, (true, true)).0 - end_penalty(u - h, (true, true)).0) / (2.0 * h);
+            let fd = (end_penalty(u + h, (true, true)).0 - end_penalty(u - h, (true, true)).0)
+                / (2.0 * h);
             assert!((end_penalty(u, (true, true)).1 - fd).abs() < 1e-5);
         }
     }

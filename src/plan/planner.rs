@@ -191,7 +191,14 @@ impl<'t> Planner<'t> {
         fatigue_only: bool,
     ) -> f64 {
         let loads = self.phase_loads(gp);
-        let mut cost = FatigueCost::new(self.task, &self.groups[0], &loads, &self.rest_loads, state, cycles);
+        let mut cost = FatigueCost::new(
+            self.task,
+            &self.groups[0],
+            &loads,
+            &self.rest_loads,
+            state,
+            cycles,
+        );
         let j = cost.value(&loads[self.groups[0][0]]);
         let d: f64 = (0..self.groups.len())
             .map(|g| self.group_weight(g, fatigue_only) * self.solver.discomfort.value(&gp.q[g]))
@@ -219,7 +226,8 @@ impl<'t> Planner<'t> {
             for g in 0..self.groups.len() {
                 let members = self.groups[g].clone();
                 let rep = &t.phases[members[0]];
-                let mut cost = FatigueCost::new(t, &members, &loads, &self.rest_loads, state, cycles);
+                let mut cost =
+                    FatigueCost::new(t, &members, &loads, &self.rest_loads, state, cycles);
                 let spec = PhaseSpec {
                     targets_m: rep.targets_m,
                     hand_force_n: rep.hand_force_n,
@@ -231,7 +239,13 @@ impl<'t> Planner<'t> {
                 let mut q = start.clone();
                 let (out, stats) = self
                     .solver
-                    .solve(&spec, &mut cost, Some(&start), multistart && pass == 0, &mut q)
+                    .solve(
+                        &spec,
+                        &mut cost,
+                        Some(&start),
+                        multistart && pass == 0,
+                        &mut q,
+                    )
                     .map_err(|source| PlanError::Qp {
                         phase: rep.name.clone(),
                         source,
@@ -326,7 +340,11 @@ impl<'t> Planner<'t> {
         Ok(plan)
     }
 
-    fn baselines(&mut self, main: &Plan, opts: PlanOptions) -> Result<Vec<BaselineSummary>, PlanError> {
+    fn baselines(
+        &mut self,
+        main: &Plan,
+        opts: PlanOptions,
+    ) -> Result<Vec<BaselineSummary>, PlanError> {
         let t = self.task;
         let nh = t.half_joints.len();
         let fresh = vec![MaState::FRESH; nh];
@@ -337,8 +355,18 @@ impl<'t> Planner<'t> {
         };
         let mut out = Vec::new();
         let blind = {
-            let mut gp = self.first_plan.clone().expect("the main plan was made first");
-            let passes = self.optimise(&mut gp, &fresh, 1, opts.fatigue_only, false, BASELINE_PASSES)?;
+            let mut gp = self
+                .first_plan
+                .clone()
+                .expect("the main plan was made first");
+            let passes = self.optimise(
+                &mut gp,
+                &fresh,
+                1,
+                opts.fatigue_only,
+                false,
+                BASELINE_PASSES,
+            )?;
             Some(self.simulate(gp, passes, held)?)
         };
         let weight_free = 0.0;
@@ -395,7 +423,12 @@ impl<'t> Planner<'t> {
         let mut postures: Vec<PostureRecord> = Vec::new();
         let mut group_posture_index = vec![0usize; self.groups.len()];
         let mut group_loads = vec![Vec::new(); self.groups.len()];
-        let record = |planner: &mut Self, gp: &GroupPostures, at: f64, postures: &mut Vec<PostureRecord>, idx: &mut Vec<usize>, loads: &mut Vec<Vec<f64>>| {
+        let record = |planner: &mut Self,
+                      gp: &GroupPostures,
+                      at: f64,
+                      postures: &mut Vec<PostureRecord>,
+                      idx: &mut Vec<usize>,
+                      loads: &mut Vec<Vec<f64>>| {
             for g in 0..planner.groups.len() {
                 let rep = &t.phases[planner.groups[g][0]];
                 let rec = planner.posture_record(&gp.q[g], &rep.hand_force_n, &rep.name, at);
@@ -404,7 +437,14 @@ impl<'t> Planner<'t> {
                 postures.push(rec);
             }
         };
-        record(self, &gp, 0.0, &mut postures, &mut group_posture_index, &mut group_loads);
+        record(
+            self,
+            &gp,
+            0.0,
+            &mut postures,
+            &mut group_posture_index,
+            &mut group_loads,
+        );
         let rest_index = postures.len();
         let q_rest = self.solver.q_rest.clone();
         postures.push(self.posture_record(&q_rest, &[Vector3::zeros(); 2], "rest", 0.0));
@@ -436,11 +476,25 @@ impl<'t> Planner<'t> {
                     .any(|(s, c)| (s.capacity - c).abs() > t.capacity_tolerance);
                 if interval_passed && moved {
                     self.solver.settings.max_iterations = REPLAN_ITERATIONS;
-                    let r = self.optimise(&mut gp, &state, (t.cycles - cycle) as u64, opts.fatigue_only, false, 1);
+                    let r = self.optimise(
+                        &mut gp,
+                        &state,
+                        (t.cycles - cycle) as u64,
+                        opts.fatigue_only,
+                        false,
+                        1,
+                    );
                     self.solver.settings = opts.sqp;
                     r?;
                     sqp_iterations += gp.solves.iter().map(|s| s.iterations as u64).sum::<u64>();
-                    record(self, &gp, time, &mut postures, &mut group_posture_index, &mut group_loads);
+                    record(
+                        self,
+                        &gp,
+                        time,
+                        &mut postures,
+                        &mut group_posture_index,
+                        &mut group_loads,
+                    );
                     replans += 1;
                     last_plan_capacity = state.iter().map(|s| s.capacity).collect();
                     last_plan_cycle = cycle;
@@ -450,7 +504,11 @@ impl<'t> Planner<'t> {
             for si in 0..n_ph + usize::from(t.rest_s > 0.0) {
                 let (name, pidx, dur) = if si < n_ph {
                     let g = group_of[si];
-                    (&t.phases[si].name, group_posture_index[g], t.phases[si].duration_s)
+                    (
+                        &t.phases[si].name,
+                        group_posture_index[g],
+                        t.phases[si].duration_s,
+                    )
                 } else {
                     (&"rest".to_string(), rest_index, t.rest_s)
                 };
@@ -495,8 +553,12 @@ impl<'t> Planner<'t> {
                 steps.phase.push(name.clone());
                 steps.cycle.push(cycle);
                 steps.posture.push(pidx);
-                steps.capacity.push(state.iter().map(|s| s.capacity).collect());
-                steps.fatigue_u_min.push(state.iter().map(|s| s.fatigue_u_min).collect());
+                steps
+                    .capacity
+                    .push(state.iter().map(|s| s.capacity).collect());
+                steps
+                    .fatigue_u_min
+                    .push(state.iter().map(|s| s.fatigue_u_min).collect());
                 time += dur;
                 if exhaustion.is_some() {
                     break 'cycles;
@@ -613,7 +675,11 @@ impl<'t> Planner<'t> {
         }
     }
 
-    fn phase_summaries(&mut self, gp: &GroupPostures, group_loads: &[Vec<f64>]) -> Vec<PhaseSummary> {
+    fn phase_summaries(
+        &mut self,
+        gp: &GroupPostures,
+        group_loads: &[Vec<f64>],
+    ) -> Vec<PhaseSummary> {
         let t = self.task;
         let d = Discomfort::new(t);
         (0..t.phases.len())
@@ -658,7 +724,10 @@ impl<'t> Planner<'t> {
                     target_inside,
                     min_clearance_m: sol.min_clearance_m,
                     closest,
-                    balance_margin_m: sol.balance_margin_m.is_finite().then_some(sol.balance_margin_m),
+                    balance_margin_m: sol
+                        .balance_margin_m
+                        .is_finite()
+                        .then_some(sol.balance_margin_m),
                     most_loaded: loaded,
                     at_limits: d
                         .near_limits(q, 0.01)
@@ -703,8 +772,12 @@ pub fn plan_task(task: &Task) -> Result<Plan, PlanError> {
 /// The fatigue model in words: the paper's, with the recovery forms its parameters use.
 fn fatigue_model_name(params: &[crate::fatigue::MaParams]) -> String {
     use crate::fatigue::Recovery;
-    let perfusion = params.iter().any(|p| matches!(p.recovery, Recovery::Perfusion { .. }));
-    let constant = params.iter().any(|p| matches!(p.recovery, Recovery::Constant { .. }));
+    let perfusion = params
+        .iter()
+        .any(|p| matches!(p.recovery, Recovery::Perfusion { .. }));
+    let constant = params
+        .iter()
+        .any(|p| matches!(p.recovery, Recovery::Constant { .. }));
     match (perfusion, constant) {
         (false, false) => "ma2009 (no recovery)".into(),
         (true, false) => "ma2009 with load-dependent (perfusion-limited) recovery".into(),

@@ -4,8 +4,12 @@
 //! first derivatives for the optimiser.
 
 use super::task::Task;
-use crate::body::stance::{cop_jacobian, foot_loads, ground_reaction, settle_internal_force, GroundReaction};
-use crate::body::statics::{apply_loads, forward_kinematics, holding_torque_derivative, mass_moments};
+use crate::body::stance::{
+    GroundReaction, cop_jacobian, foot_loads, ground_reaction, settle_internal_force,
+};
+use crate::body::statics::{
+    apply_loads, forward_kinematics, holding_torque_derivative, mass_moments,
+};
 use crate::body::{JointKind, PointLoad, StaticsData};
 use crate::workstation::Clearance;
 use nalgebra::{DMatrix, Isometry3, Matrix2xX, Matrix3, Matrix3xX, Vector3};
@@ -144,7 +148,13 @@ impl Scene {
                 data.link_point(m, c.link, &c.b),
             )
         };
-        let parent_body = |b: usize| if b == 0 { None } else { Some(m.q_parent_body[b - 1]) };
+        let parent_body = |b: usize| {
+            if b == 0 {
+                None
+            } else {
+                Some(m.q_parent_body[b - 1])
+            }
+        };
         let mut self_pairs = Vec::new();
         for i in 0..capsules.len() {
             for j in i + 1..capsules.len() {
@@ -272,7 +282,13 @@ impl PostureWork {
         self.ground = None;
         let mut ground = None;
         if let Some(st) = &task.stance {
-            let g = ground_reaction(m, &self.data, st, &self.hands[..self.n_hands], &task.gravity_m_s2);
+            let g = ground_reaction(
+                m,
+                &self.data,
+                st,
+                &self.hands[..self.n_hands],
+                &task.gravity_m_s2,
+            );
             let feet = foot_loads(m, &self.data, st, &g);
             self.loads.extend_from_slice(&feet);
             ground = Some(g);
@@ -388,7 +404,8 @@ impl PostureWork {
                 if foot && o.is_floor() {
                     continue;
                 }
-                if let Some(cl) = o.box_clearance(i, &world_from_box, &bx.half_extents_m, within_m) {
+                if let Some(cl) = o.box_clearance(i, &world_from_box, &bx.half_extents_m, within_m)
+                {
                     min_d = min_d.min(cl.distance_m);
                     self.contacts.push(Contact {
                         distance_m: cl.distance_m,
@@ -438,7 +455,8 @@ impl PostureWork {
     /// Gradient of a contact's distance with respect to q, into `out` (length nq).
     pub fn contact_gradient(&mut self, task: &Task, c: &Contact, out: &mut [f64]) {
         let m = &task.model;
-        self.data.point_jacobian(m, c.link, &c.point_m, &mut self.jac);
+        self.data
+            .point_jacobian(m, c.link, &c.point_m, &mut self.jac);
         // d = n·(p_other − p_body) − …: moving the body point along n closes the gap.
         for (k, o) in out.iter_mut().enumerate() {
             *o = -c.normal.dot(&self.jac.column(k).into_owned());
@@ -473,15 +491,16 @@ impl PostureWork {
 /// The rotation vector (axis × angle) of a rotation matrix, robust to round-off (atan2 of the
 /// skew part's norm and the trace, never acos of a value past 1).
 pub fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
-    let v = 0.5 * Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    let v = 0.5
+        * Vector3::new(
+            r[(2, 1)] - r[(1, 2)],
+            r[(0, 2)] - r[(2, 0)],
+            r[(1, 0)] - r[(0, 1)],
+        );
     let s = v.norm();
     let c = 0.5 * (r.trace() - 1.0);
     let theta = s.atan2(c);
-    if s > 1e-12 {
-        v * (theta / s)
-    } else {
-        v
-    }
+    if s > 1e-12 { v * (theta / s) } else { v }
 }
 
 /// The trunk's orientation in the world at the last statics (for reports): the rotation of the
@@ -508,7 +527,10 @@ mod tests {
             &Vector3::new(0.0, -1.0, 2.0),
             &Vector3::new(0.0, 1.0, 2.0),
         );
-        assert!((p - Vector3::zeros()).norm() < 1e-12 && (q - Vector3::new(0.0, 0.0, 2.0)).norm() < 1e-12);
+        assert!(
+            (p - Vector3::zeros()).norm() < 1e-12
+                && (q - Vector3::new(0.0, 0.0, 2.0)).norm() < 1e-12
+        );
         let (p, q) = segment_closest(
             &Vector3::new(0.0, 0.0, 0.0),
             &Vector3::new(1.0, 0.0, 0.0),

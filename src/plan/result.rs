@@ -6,8 +6,8 @@
 //! `postures` that steps refer to by index.
 
 use crate::fatigue::Recovery;
-use crate::plan::sqp::SqpOutcome;
 use crate::plan::search::SearchStats;
+use crate::plan::sqp::SqpOutcome;
 use serde::Serialize;
 
 /// One half-joint (muscle group) of the plan.

@@ -9,11 +9,11 @@
 //! the best feasible one is kept. Everything is deterministic: the same problem gives the same
 //! posture, whatever posture the search started from.
 
-use super::ik::{solve_ik, IkSettings};
+use super::ik::{IkSettings, solve_ik};
 use super::objective::{Discomfort, LoadCost};
 use super::posture::{PostureWork, Scene};
 use super::qp::QpError;
-use super::sqp::{solve_phase, PhaseProblem, SqpOutcome, SqpSettings, SqpWork};
+use super::sqp::{PhaseProblem, SqpOutcome, SqpSettings, SqpWork, solve_phase};
 use super::task::Task;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -103,8 +103,12 @@ impl<'t> PhaseSolver<'t> {
         let t = self.task;
         let rest = self.q_rest.clone();
         let mut out = vec![rest.clone()];
-        let worker = t.model.q_index("lumbar_flexion").is_ok() && t.model.q_index("pelvis_tz").is_ok();
-        let centre = targets.iter().flatten().fold(Vector3::zeros(), |a, b| a + b)
+        let worker =
+            t.model.q_index("lumbar_flexion").is_ok() && t.model.q_index("pelvis_tz").is_ok();
+        let centre = targets
+            .iter()
+            .flatten()
+            .fold(Vector3::zeros(), |a, b| a + b)
             / targets.iter().flatten().count().max(1) as f64;
         if worker {
             let mut stoop = rest.clone();
@@ -132,7 +136,12 @@ impl<'t> PhaseSolver<'t> {
                 let mut arm = rest.clone();
                 for (h, side) in ["r_", "l_"].iter().enumerate() {
                     if targets[h].is_some() {
-                        set(t, &mut arm, &format!("{side}shoulder_flexion"), 1.3 + elevation);
+                        set(
+                            t,
+                            &mut arm,
+                            &format!("{side}shoulder_flexion"),
+                            1.3 + elevation,
+                        );
                         set(t, &mut arm, &format!("{side}shoulder_abduction"), abd);
                         set(t, &mut arm, &format!("{side}shoulder_rotation"), rot);
                         set(t, &mut arm, &format!("{side}elbow_flexion"), 0.6);
@@ -154,8 +163,12 @@ impl<'t> PhaseSolver<'t> {
                 let mut q = rest.clone();
                 for (k, qk) in q.iter_mut().enumerate() {
                     let j = t.model.q_joint(k);
-                    let (lo, hi) = (j.lower_rad.max(-std::f64::consts::PI), j.upper_rad.min(std::f64::consts::PI));
-                    *qk = (*qk + 0.3 * (hi - lo) * (2.0 * next() - 1.0)).clamp(j.lower_rad, j.upper_rad);
+                    let (lo, hi) = (
+                        j.lower_rad.max(-std::f64::consts::PI),
+                        j.upper_rad.min(std::f64::consts::PI),
+                    );
+                    *qk = (*qk + 0.3 * (hi - lo) * (2.0 * next() - 1.0))
+                        .clamp(j.lower_rad, j.upper_rad);
                 }
                 out.push(q);
             }
@@ -183,7 +196,14 @@ impl<'t> PhaseSolver<'t> {
         // Bring every start onto the targets and the stance.
         for s in starts.iter_mut() {
             let reference = s.clone();
-            solve_ik(self.task, &mut self.pw, &spec.targets_m, &reference, s, IkSettings::default());
+            solve_ik(
+                self.task,
+                &mut self.pw,
+                &spec.targets_m,
+                &reference,
+                s,
+                IkSettings::default(),
+            );
         }
         let full = self.settings;
         if starts.len() == 1 {
@@ -204,7 +224,8 @@ impl<'t> PhaseSolver<'t> {
             max_iterations: self.search.screen_iterations,
             ..full
         };
-        let mut screened: Vec<(f64, usize, Vec<f64>, SqpOutcome)> = Vec::with_capacity(starts.len());
+        let mut screened: Vec<(f64, usize, Vec<f64>, SqpOutcome)> =
+            Vec::with_capacity(starts.len());
         for (i, mut s) in starts.into_iter().enumerate() {
             let out = self.run(spec, cost, &mut s, screen)?;
             screened.push((rank(&out), i, s, out));
@@ -220,7 +241,10 @@ impl<'t> PhaseSolver<'t> {
                 first_full = Some(out.objective);
             }
             let r = rank(&out);
-            if best.as_ref().is_none_or(|b| r < b.0 || (r == b.0 && i < b.1)) {
+            if best
+                .as_ref()
+                .is_none_or(|b| r < b.0 || (r == b.0 && i < b.1))
+            {
                 best = Some((r, i, s, out));
             }
         }
@@ -245,7 +269,9 @@ impl<'t> PhaseSolver<'t> {
         settings: SqpSettings,
     ) -> Result<SqpOutcome, QpError> {
         self.work.settings = settings;
-        let mut memory = spec.memory.map(|k| self.curvature.remove(&k).unwrap_or_default());
+        let mut memory = spec
+            .memory
+            .map(|k| self.curvature.remove(&k).unwrap_or_default());
         let mut prob = PhaseProblem {
             targets_m: spec.targets_m,
             hand_force_n: spec.hand_force_n,
@@ -255,7 +281,14 @@ impl<'t> PhaseSolver<'t> {
             capacity: spec.capacity,
             curvature: memory.as_mut(),
         };
-        let r = solve_phase(self.task, &self.scene, &mut self.pw, &mut self.work, &mut prob, q);
+        let r = solve_phase(
+            self.task,
+            &self.scene,
+            &mut self.pw,
+            &mut self.work,
+            &mut prob,
+            q,
+        );
         if let (Some(k), Some(m)) = (spec.memory, memory) {
             self.curvature.insert(k, m);
         }

@@ -218,7 +218,12 @@ impl SqpWork {
 
 /// Equality residuals (target − actual) at the posture in `pw` (after its statics): 3 per hand
 /// (zero for a free hand), then 6 per foot; into `out`.
-fn equality_residuals(task: &Task, pw: &PostureWork, targets: &[Option<Vector3<f64>>; 2], out: &mut [f64]) {
+fn equality_residuals(
+    task: &Task,
+    pw: &PostureWork,
+    targets: &[Option<Vector3<f64>>; 2],
+    out: &mut [f64],
+) {
     for h in 0..2 {
         let r = match (targets[h], pw.hand_position(task, h)) {
             (Some(t), Some(p)) => t - p,
@@ -311,8 +316,12 @@ fn build_qp(
     prob.cost.eval(&work.f, &mut work.grad, &mut work.curv);
     work.dq_grad.iter_mut().for_each(|x| *x = 0.0);
     work.dq_curv.iter_mut().for_each(|x| *x = 0.0);
-    prob.discomfort
-        .eval(q, prob.discomfort_weight, &mut work.dq_grad, &mut work.dq_curv);
+    prob.discomfort.eval(
+        q,
+        prob.discomfort_weight,
+        &mut work.dq_grad,
+        &mut work.dq_curv,
+    );
     let mut res = std::mem::take(&mut work.eq_res);
     equality_residuals(task, pw, &prob.targets_m, &mut res);
     pw.clearances(task, scene, s.contact_horizon_m);
@@ -549,13 +558,14 @@ fn update_curvature(work: &mut SqpWork, q: &[f64]) {
             } else {
                 0.8 * sbs / (sbs - sy)
             };
-            let r: Vec<f64> = (0..n).map(|i| theta * y[i] + (1.0 - theta) * work.bs[i]).collect();
+            let r: Vec<f64> = (0..n)
+                .map(|i| theta * y[i] + (1.0 - theta) * work.bs[i])
+                .collect();
             let sr: f64 = (0..n).map(|i| sv[i] * r[i]).sum();
             if sr > 1e-16 {
                 for i in 0..n {
                     for j in 0..n {
-                        work.bfgs[i * n + j] +=
-                            r[i] * r[j] / sr - work.bs[i] * work.bs[j] / sbs;
+                        work.bfgs[i * n + j] += r[i] * r[j] / sr - work.bs[i] * work.bs[j] / sbs;
                     }
                 }
             }
@@ -608,9 +618,7 @@ fn kkt(work: &mut SqpWork) -> (f64, f64) {
     let qp = &work.qp;
     let c = qp.cols;
     qp.stationarity(&work.x0, &mut work.stat);
-    let stationarity = work.stat[..c.e]
-        .iter()
-        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let stationarity = work.stat[..c.e].iter().fold(0.0f64, |m, x| m.max(x.abs()));
     qp.a_times(&work.x0, &mut work.ax);
     let r = qp.rows;
     // the penalty slacks' own bounds are not constraints of the problem
@@ -634,7 +642,9 @@ fn predicted_decrease(work: &SqpWork, m0: &Merit) -> f64 {
         xr[c.e..].iter_mut().for_each(|v| *v = 0.0);
         let mut px = vec![0.0; c.n_var];
         qp.p_times(&xr, &mut px);
-        (0..c.e).map(|i| 0.5 * px[i] * xr[i] + qp.q[i] * xr[i]).sum()
+        (0..c.e)
+            .map(|i| 0.5 * px[i] * xr[i] + qp.q[i] * xr[i])
+            .sum()
     };
     let e_after: f64 = qp.x[c.e..c.v_cap].iter().map(|v| v.abs()).sum();
     let objective = model(&work.x0) - model(&qp.x);
@@ -716,13 +726,22 @@ pub fn solve_phase(
                 work.q_trial[k] = q[k] + alpha * d[k];
             }
             let mut trial = std::mem::take(&mut work.q_trial);
-            let enough = |m1: &Merit| m1.phi <= m0.phi - 1e-4 * alpha * pred || (pred <= 1e-14 && m1.phi < m0.phi);
+            let enough = |m1: &Merit| {
+                m1.phi <= m0.phi - 1e-4 * alpha * pred || (pred <= 1e-14 && m1.phi < m0.phi)
+            };
             let mut m1 = merit(task, scene, pw, work, prob, &trial);
             if !enough(&m1) {
                 // Second-order correction: back onto the curved targets and feet, and out of any
                 // clearance or balance constraint the step crossed.
                 let plain = trial.clone();
-                restore(task, scene, pw, &prob.targets_m, &mut trial, work.settings.contact_horizon_m);
+                restore(
+                    task,
+                    scene,
+                    pw,
+                    &prob.targets_m,
+                    &mut trial,
+                    work.settings.contact_horizon_m,
+                );
                 let m2 = merit(task, scene, pw, work, prob, &trial);
                 if m2.phi < m1.phi {
                     m1 = m2;
@@ -819,10 +838,9 @@ pub fn restore(
         if let (Some(st), Some(g)) = (&task.stance, pw.ground) {
             if g.margin_m < task.objective.balance_margin_m {
                 pw.centre_of_pressure_jacobian(task);
-                if let Some((nrm, d)) = st
-                    .edges()
-                    .min_by(|a, b| (a.1 - a.0.dot(&g.cop_total_m)).total_cmp(&(b.1 - b.0.dot(&g.cop_total_m))))
-                {
+                if let Some((nrm, d)) = st.edges().min_by(|a, b| {
+                    (a.1 - a.0.dot(&g.cop_total_m)).total_cmp(&(b.1 - b.0.dot(&g.cop_total_m)))
+                }) {
                     // margin = d − n·p must rise to the minimum: −n·J_p Δ = m_min − margin
                     let row: Vec<f64> = (0..n)
                         .map(|k| -(nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)]))

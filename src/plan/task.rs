@@ -7,9 +7,9 @@
 //! radians (degrees where a field says `_deg`); world frame x forward, y left, z up, floor at z = 0.
 
 use crate::body::stance::{Foot, Stance};
-use crate::body::worker::{worker_geometry, LEFT_FOOT_LINK, RIGHT_FOOT_LINK};
+use crate::body::worker::{LEFT_FOOT_LINK, RIGHT_FOOT_LINK, worker_geometry};
 use crate::body::{
-    resolve_half_joints, worker_urdf, BodyModel, HalfJoint, StrengthTable, Worker, GRAVITY_M_S2,
+    BodyModel, GRAVITY_M_S2, HalfJoint, StrengthTable, Worker, resolve_half_joints, worker_urdf,
 };
 use crate::fatigue::params::{ParameterSet, ParameterSets};
 use crate::fatigue::{MaParams, Recovery};
@@ -498,14 +498,19 @@ impl Task {
             .validate()
             .map_err(|e| field("worker", e.to_string()))?;
         let gravity = match f.gravity_m_s2 {
-            Some(g) if g.iter().all(|x| x.is_finite()) && Vector3::from(g).norm() <= MAX_GRAVITY_M_S2 => {
+            Some(g)
+                if g.iter().all(|x| x.is_finite())
+                    && Vector3::from(g).norm() <= MAX_GRAVITY_M_S2 =>
+            {
                 Vector3::from(g)
             }
             Some(g) => {
                 return Err(field(
                     "gravity_m_s2",
-                    format!("must be finite with a magnitude of at most {MAX_GRAVITY_M_S2} m/s² (3 g), got {g:?}"),
-                ))
+                    format!(
+                        "must be finite with a magnitude of at most {MAX_GRAVITY_M_S2} m/s² (3 g), got {g:?}"
+                    ),
+                ));
             }
             None => GRAVITY_M_S2,
         };
@@ -527,9 +532,16 @@ impl Task {
                                 "robot",
                                 format!(
                                     "{} was generated for a {} of {} m and {} kg, but the task's worker is a {} of {} m and {} kg: regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
-                                    urdf.display(), made_for.0, made_for.1, made_for.2,
-                                    w.sex.name(), w.stature_m, w.mass_kg,
-                                    w.sex.name(), w.stature_m, w.mass_kg
+                                    urdf.display(),
+                                    made_for.0,
+                                    made_for.1,
+                                    made_for.2,
+                                    w.sex.name(),
+                                    w.stature_m,
+                                    w.mass_kg,
+                                    w.sex.name(),
+                                    w.stature_m,
+                                    w.mass_kg
                                 ),
                             ));
                         }
@@ -552,7 +564,12 @@ impl Task {
                     .map_err(|e| field("worker", e.to_string()))?;
                 let model = BodyModel::from_urdf_str(&text, "generated worker")
                     .map_err(|e| field("worker", e.to_string()))?;
-                (model, "generated from worker".to_string(), table_default, true)
+                (
+                    model,
+                    "generated from worker".to_string(),
+                    table_default,
+                    true,
+                )
             }
         };
         if model.nq() == 0 {
@@ -568,8 +585,14 @@ impl Task {
                 .unwrap_or_else(|| "l_hand_grip".into()),
         ];
         let hand_links = [
-            model.frame_link(&hand_names[0]).ok().map(|l| (l, hand_names[0].clone())),
-            model.frame_link(&hand_names[1]).ok().map(|l| (l, hand_names[1].clone())),
+            model
+                .frame_link(&hand_names[0])
+                .ok()
+                .map(|l| (l, hand_names[0].clone())),
+            model
+                .frame_link(&hand_names[1])
+                .ok()
+                .map(|l| (l, hand_names[1].clone())),
         ];
         if hand_links[0].is_none() && (f.hand_frame.is_some() || hand_links[1].is_none()) {
             let frames: Vec<&str> = model.links.iter().map(|l| l.name.as_str()).collect();
@@ -632,7 +655,7 @@ impl Task {
                     return Err(field(
                         "stance.width_m",
                         format!("must be within 0.05..1.5 m, got {w}"),
-                    ))
+                    ));
                 }
                 None if generated => 2.0 * worker_geometry(&f.worker).shoulder_half_width_m,
                 None => 0.3,
@@ -688,7 +711,10 @@ impl Task {
         if f.phases.len() > MAX_PHASES {
             return Err(field(
                 "phases",
-                format!("at most {MAX_PHASES} phases per cycle, got {}", f.phases.len()),
+                format!(
+                    "at most {MAX_PHASES} phases per cycle, got {}",
+                    f.phases.len()
+                ),
             ));
         }
         let mut phases = Vec::with_capacity(f.phases.len());
@@ -752,7 +778,10 @@ impl Task {
                         &format!("lifts[{i}] ({}).{what}", l.name),
                         format!(
                             "'{name}' is not a phase of the task{}",
-                            crate::schema::did_you_mean(name, phases.iter().map(|p| p.name.as_str()))
+                            crate::schema::did_you_mean(
+                                name,
+                                phases.iter().map(|p| p.name.as_str())
+                            )
                         ),
                     )
                 })
@@ -820,7 +849,9 @@ impl Task {
 type FieldErr<'a> = dyn Fn(&str, String) -> TaskError + 'a;
 
 fn check_point(v: &[f64; 3], at: &str, field: &FieldErr) -> Result<Vector3<f64>, TaskError> {
-    if v.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE_M) {
+    if v.iter()
+        .all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE_M)
+    {
         Ok(Vector3::from(*v))
     } else {
         Err(field(
@@ -844,7 +875,11 @@ fn check_phase(
             format!("must be > 0 s and at most a year, got {}", ph.duration_s),
         ));
     }
-    let given = [ph.target_m.is_some(), ph.targets.is_some(), ph.object.is_some()];
+    let given = [
+        ph.target_m.is_some(),
+        ph.targets.is_some(),
+        ph.object.is_some(),
+    ];
     if given.iter().filter(|g| **g).count() != 1 {
         return Err(field(
             &at("target_m"),
@@ -888,7 +923,7 @@ fn check_phase(
                 return Err(field(
                     &at("object.size_m"),
                     format!("must be within 0..5 m each, got {s:?}"),
-                ))
+                ));
             }
             None => [0.3, o.grip_width_m, 0.25],
         };
@@ -910,25 +945,27 @@ fn check_phase(
             return Err(field(
                 &at("load_kg"),
                 "give load_kg or hand_force_n, not both".into(),
-            ))
+            ));
         }
         (Some(m), None) if m.is_finite() && (0.0..=MAX_LOAD_KG).contains(&m) => gravity * m,
         (Some(m), None) => {
             return Err(field(
                 &at("load_kg"),
                 format!("must be between 0 and {MAX_LOAD_KG} kg, got {m}"),
-            ))
+            ));
         }
-        (None, Some(fv)) if fv.iter().all(|x| x.is_finite() && x.abs() <= MAX_HAND_FORCE_N) => {
+        (None, Some(fv))
+            if fv
+                .iter()
+                .all(|x| x.is_finite() && x.abs() <= MAX_HAND_FORCE_N) =>
+        {
             Vector3::from(fv)
         }
         (None, Some(fv)) => {
             return Err(field(
                 &at("hand_force_n"),
-                format!(
-                    "components must be finite and within ±{MAX_HAND_FORCE_N} N, got {fv:?}"
-                ),
-            ))
+                format!("components must be finite and within ±{MAX_HAND_FORCE_N} N, got {fv:?}"),
+            ));
         }
         (None, None) => Vector3::zeros(),
     };
@@ -946,7 +983,7 @@ fn check_phase(
             return Err(field(
                 &at("left_share"),
                 format!("must be within 0..1, got {s}"),
-            ))
+            ));
         }
         None if two => 0.5,
         None if targets[1].is_some() => 1.0,
@@ -961,7 +998,12 @@ fn check_phase(
     })
 }
 
-fn check_rate(name: &str, v: Option<f64>, positive: bool, field: &FieldErr) -> Result<Option<f64>, TaskError> {
+fn check_rate(
+    name: &str,
+    v: Option<f64>,
+    positive: bool,
+    field: &FieldErr,
+) -> Result<Option<f64>, TaskError> {
     use crate::fatigue::ma::{K_MAX_PER_MIN, K_MIN_PER_MIN, R_MAX_PER_MIN};
     match v {
         Some(x) if positive && x.is_finite() && (K_MIN_PER_MIN..=K_MAX_PER_MIN).contains(&x) => {
@@ -982,12 +1024,25 @@ fn check_rate(name: &str, v: Option<f64>, positive: bool, field: &FieldErr) -> R
 
 /// The worker a generated URDF was made for (sex, stature, mass), from its header comment.
 fn generated_for(urdf: &str) -> Option<(String, f64, f64)> {
-    let line = urdf.lines().take(5).find(|l| l.contains("Generated by posture-opt:"))?;
+    let line = urdf
+        .lines()
+        .take(5)
+        .find(|l| l.contains("Generated by posture-opt:"))?;
     let rest = line.split("Generated by posture-opt:").nth(1)?;
     let mut parts = rest.split(',').map(str::trim);
     let sex = parts.next()?.to_string();
-    let stature = parts.next()?.strip_prefix("stature ")?.strip_suffix(" m")?.parse().ok()?;
-    let mass = parts.next()?.strip_prefix("mass ")?.strip_suffix(" kg")?.parse().ok()?;
+    let stature = parts
+        .next()?
+        .strip_prefix("stature ")?
+        .strip_suffix(" m")?
+        .parse()
+        .ok()?;
+    let mass = parts
+        .next()?
+        .strip_prefix("mass ")?
+        .strip_suffix(" kg")?
+        .parse()
+        .ok()?;
     Some((sex, stature, mass))
 }
 
@@ -1021,7 +1076,12 @@ fn resolve_fatigue(
         })?)
     };
     let k0 = check_rate("fatigue.k_per_min", ff.k_per_min, true, field)?;
-    let r0 = check_rate("fatigue.recovery_per_min", ff.recovery_per_min, false, field)?;
+    let r0 = check_rate(
+        "fatigue.recovery_per_min",
+        ff.recovery_per_min,
+        false,
+        field,
+    )?;
     let rec_override = match ff.recovery {
         Some(r) => {
             let rec = Recovery::Perfusion {

@@ -54,8 +54,11 @@ pub fn read_line_bounded(
             return Err(RecordingError::Line {
                 source_name: source.into(),
                 line,
-                problem: format!("not UTF-8 text (invalid byte at position {})", e.valid_up_to() + 1),
-            })
+                problem: format!(
+                    "not UTF-8 text (invalid byte at position {})",
+                    e.valid_up_to() + 1
+                ),
+            });
         }
     }
     Ok(true)
@@ -121,13 +124,20 @@ impl Columns {
         }
         let mut hand_from_file = [false; 2];
         for (h, name) in [(0, "right"), (1, "left")] {
-            let forces = kinds.iter().filter(|k| matches!(k, Kind::Force(x, _) if *x == h)).count();
+            let forces = kinds
+                .iter()
+                .filter(|k| matches!(k, Kind::Force(x, _) if *x == h))
+                .count();
             let load = kinds.contains(&Kind::LoadKg(h));
             if forces != 0 && forces != 3 {
-                return Err(bad(format!("the {name} hand's force needs all three columns (x, y, z)")));
+                return Err(bad(format!(
+                    "the {name} hand's force needs all three columns (x, y, z)"
+                )));
             }
             if forces == 3 && load {
-                return Err(bad(format!("give the {name} hand's load in kg or as a force, not both")));
+                return Err(bad(format!(
+                    "give the {name} hand's load in kg or as a force, not both"
+                )));
             }
             hand_from_file[h] = load || forces == 3;
         }
@@ -165,7 +175,9 @@ impl Columns {
             if raw.is_empty() {
                 return Err(cell(column, "missing value".into()));
             }
-            let v: f64 = raw.parse().map_err(|_| cell(column, format!("'{raw}' is not a number")))?;
+            let v: f64 = raw
+                .parse()
+                .map_err(|_| cell(column, format!("'{raw}' is not a number")))?;
             if !v.is_finite() {
                 return Err(cell(column, format!("'{raw}' is not finite")));
             }
@@ -183,13 +195,25 @@ impl Columns {
                 Kind::Joint(k) => out.q_rad[k] = if degrees { v.to_radians() } else { v },
                 Kind::LoadKg(h) => {
                     if !(0.0..=crate::plan::task::MAX_LOAD_KG).contains(&v) {
-                        return Err(cell(i + 2, format!("a load must be 0..{} kg, got {v}", crate::plan::task::MAX_LOAD_KG)));
+                        return Err(cell(
+                            i + 2,
+                            format!(
+                                "a load must be 0..{} kg, got {v}",
+                                crate::plan::task::MAX_LOAD_KG
+                            ),
+                        ));
                     }
                     out.hand_force_n[h] = gravity * v;
                 }
                 Kind::Force(h, a) => {
                     if v.abs() > crate::plan::task::MAX_HAND_FORCE_N {
-                        return Err(cell(i + 2, format!("a hand force must be within ±{} N, got {v}", crate::plan::task::MAX_HAND_FORCE_N)));
+                        return Err(cell(
+                            i + 2,
+                            format!(
+                                "a hand force must be within ±{} N, got {v}",
+                                crate::plan::task::MAX_HAND_FORCE_N
+                            ),
+                        ));
                     }
                     out.hand_force_n[h][a] = v;
                 }

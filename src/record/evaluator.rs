@@ -3,8 +3,8 @@
 
 use super::{EvalError, Sample};
 use crate::fatigue::MaState;
-use crate::plan::posture::PostureWork;
 use crate::plan::Task;
+use crate::plan::posture::PostureWork;
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -85,7 +85,8 @@ impl<'t> Evaluator<'t> {
                 outside = true;
             }
             let as_deg = v.to_radians();
-            let fits_as_deg = as_deg >= j.lower_rad - RANGE_TOLERANCE_RAD && as_deg <= j.upper_rad + RANGE_TOLERANCE_RAD;
+            let fits_as_deg = as_deg >= j.lower_rad - RANGE_TOLERANCE_RAD
+                && as_deg <= j.upper_rad + RANGE_TOLERANCE_RAD;
             if beyond > DEGREES_SUSPECT_RAD && fits_as_deg {
                 return Err((k, v));
             }
@@ -106,7 +107,12 @@ impl<'t> Evaluator<'t> {
                 got: s.q_rad.len(),
             });
         }
-        if !s.t_s.is_finite() || s.q_rad.iter().any(|v| !v.is_finite()) || s.hand_force_n.iter().any(|f| !f.iter().all(|v| v.is_finite())) {
+        if !s.t_s.is_finite()
+            || s.q_rad.iter().any(|v| !v.is_finite())
+            || s.hand_force_n
+                .iter()
+                .any(|f| !f.iter().all(|v| v.is_finite()))
+        {
             return Err(EvalError::NotFinite { t_s: s.t_s });
         }
         let before = self.events.len();
@@ -148,7 +154,8 @@ impl<'t> Evaluator<'t> {
         self.samples += 1;
         let forces: [Vector3<f64>; 2] = s.hand_force_n;
         self.work.statics(self.task, &s.q_rad, &forces);
-        self.work.half_joint_loads(self.task, &s.q_rad, &mut self.loads);
+        self.work
+            .half_joint_loads(self.task, &s.q_rad, &mut self.loads);
         for h in 0..self.loads.len() {
             if !self.loads[h].is_finite() {
                 self.loads[h] = 0.0;

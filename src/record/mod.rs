@@ -21,7 +21,7 @@ pub mod opensim;
 pub mod run;
 
 pub use evaluator::{Evaluator, ExhaustionEvent};
-pub use run::{evaluate, stream, Evaluation, Input, Options, StreamLine};
+pub use run::{Evaluation, Input, Options, StreamLine, evaluate, stream};
 
 use crate::plan::{Task, TaskError, TaskFile};
 use nalgebra::Vector3;
@@ -49,7 +49,10 @@ impl Sample {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum RecordingError {
     #[error("{source_name}: line 1: {problem}")]
-    Header { source_name: String, problem: String },
+    Header {
+        source_name: String,
+        problem: String,
+    },
     #[error("{source_name}: line {line}, column {column} ({name}): {problem}")]
     Cell {
         source_name: String,
@@ -81,7 +84,10 @@ pub enum EvalError {
 
 /// The task that sets up an evaluation without a task file: the generated whole-body worker
 /// described by `worker`, the default stance and fatigue parameters (`parameters`: a named set).
-pub fn default_setup(worker: crate::body::Worker, parameters: Option<&str>) -> Result<Task, TaskError> {
+pub fn default_setup(
+    worker: crate::body::Worker,
+    parameters: Option<&str>,
+) -> Result<Task, TaskError> {
     let mut fatigue = serde_json::Map::new();
     if let Some(p) = parameters {
         fatigue.insert("parameters".into(), p.into());

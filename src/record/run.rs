@@ -1,6 +1,6 @@
 //! Evaluating a whole recording (streamed through, bounded memory) and live evaluation.
 
-use super::csv_recording::{read_line_bounded, Columns, MAX_LINE_BYTES};
+use super::csv_recording::{Columns, MAX_LINE_BYTES, read_line_bounded};
 use super::evaluator::{Evaluator, ExhaustionEvent};
 use super::opensim::{MappedMotion, Mapping, StorageReader};
 use super::{RecordingError, Sample};
@@ -9,7 +9,8 @@ use serde::Serialize;
 use std::io::{BufRead, Write};
 
 /// The hold rule, as stated in outputs.
-pub const HOLD_RULE: &str = "zero-order hold: each sample's posture and loads hold until the next sample";
+pub const HOLD_RULE: &str =
+    "zero-order hold: each sample's posture and loads hold until the next sample";
 
 /// Most timeline points kept in the document (the CSV output has every sample).
 pub const TIMELINE_POINTS: usize = 2000;
@@ -19,7 +20,11 @@ pub enum Input<R> {
     /// CSV (see [`super::csv_recording`]).
     Csv { reader: R, name: String },
     /// OpenSim `.mot`/`.sto` with a mapping onto the body's joints.
-    OpenSim { reader: R, name: String, mapping: Mapping },
+    OpenSim {
+        reader: R,
+        name: String,
+        mapping: Mapping,
+    },
 }
 
 /// How to read it.
@@ -67,7 +72,14 @@ impl<R: BufRead> Reader<R> {
                 let (mut buf, mut bytes, mut line) = (String::new(), Vec::new(), 0);
                 loop {
                     line += 1;
-                    if !read_line_bounded(&mut reader, &mut buf, &mut bytes, MAX_LINE_BYTES, &name, line)? {
+                    if !read_line_bounded(
+                        &mut reader,
+                        &mut buf,
+                        &mut bytes,
+                        MAX_LINE_BYTES,
+                        &name,
+                        line,
+                    )? {
                         return Err(RecordingError::Header {
                             source_name: name,
                             problem: "the recording is empty".into(),
@@ -87,7 +99,11 @@ impl<R: BufRead> Reader<R> {
                     bytes,
                 })
             }
-            Input::OpenSim { reader, name, mapping } => {
+            Input::OpenSim {
+                reader,
+                name,
+                mapping,
+            } => {
                 let storage = StorageReader::new(reader, &name).map_err(opensim_err)?;
                 let joints = task.joint_names();
                 let refs: Vec<&str> = joints.iter().map(String::as_str).collect();
@@ -123,7 +139,12 @@ impl<R: BufRead> Reader<R> {
     }
 
     /// Reads the next sample into `out`: `Ok(false)` at the end.
-    fn next(&mut self, task: &Task, degrees: bool, out: &mut Sample) -> Result<bool, RecordingError> {
+    fn next(
+        &mut self,
+        task: &Task,
+        degrees: bool,
+        out: &mut Sample,
+    ) -> Result<bool, RecordingError> {
         match self {
             Reader::Csv {
                 reader,
@@ -143,13 +164,15 @@ impl<R: BufRead> Reader<R> {
                 cols.parse_sample(buf, *line, degrees, &task.gravity_m_s2, name, out)?;
                 return Ok(true);
             },
-            Reader::OpenSim { motion, .. } => match motion.next_frame(&mut out.q_rad).map_err(opensim_err)? {
-                Some(t) => {
-                    out.t_s = t;
-                    Ok(true)
+            Reader::OpenSim { motion, .. } => {
+                match motion.next_frame(&mut out.q_rad).map_err(opensim_err)? {
+                    Some(t) => {
+                        out.t_s = t;
+                        Ok(true)
+                    }
+                    None => Ok(false),
                 }
-                None => Ok(false),
-            },
+            }
         }
     }
 }
@@ -220,8 +243,10 @@ impl Timeline {
             }
         }
         self.t_s.push(t);
-        self.capacity.push(ev.state.iter().map(|s| s.capacity).collect());
-        self.fatigue_u_min.push(ev.state.iter().map(|s| s.fatigue_u_min).collect());
+        self.capacity
+            .push(ev.state.iter().map(|s| s.capacity).collect());
+        self.fatigue_u_min
+            .push(ev.state.iter().map(|s| s.fatigue_u_min).collect());
         self.load.push(ev.loads.clone());
     }
 }
@@ -289,7 +314,9 @@ pub fn evaluate<R: BufRead>(
     let mut ev = Evaluator::new(task);
     let mut s = Sample::zeros(task.model.nq());
     let ids: Vec<String> = task.half_joint_ids();
-    let mut csv = csv_out.as_mut().map(|w| ::csv::Writer::from_writer(&mut **w));
+    let mut csv = csv_out
+        .as_mut()
+        .map(|w| ::csv::Writer::from_writer(&mut **w));
     if let Some(w) = csv.as_mut() {
         let mut head = vec!["t_s".to_string()];
         for h in &ids {
@@ -297,7 +324,8 @@ pub fn evaluate<R: BufRead>(
             head.push(format!("u_{h}_min"));
             head.push(format!("load_{h}"));
         }
-        w.write_record(&head).map_err(|e| RunError::Write(e.to_string()))?;
+        w.write_record(&head)
+            .map_err(|e| RunError::Write(e.to_string()))?;
     }
     let mut timeline = Timeline::default();
     let mut i = 0u64;
@@ -315,7 +343,8 @@ pub fn evaluate<R: BufRead>(
                 row.push(ev.state[h].fatigue_u_min.to_string());
                 row.push(ev.loads[h].to_string());
             }
-            w.write_record(&row).map_err(|e| RunError::Write(e.to_string()))?;
+            w.write_record(&row)
+                .map_err(|e| RunError::Write(e.to_string()))?;
         }
         i += 1;
     }
@@ -328,9 +357,16 @@ pub fn evaluate<R: BufRead>(
     let nh = ids.len();
     let final_c: Vec<f64> = ev.state.iter().map(|s| s.capacity).collect();
     let final_u: Vec<f64> = ev.state.iter().map(|s| s.fatigue_u_min).collect();
-    let worst = (0..nh).max_by(|&a, &b| final_u[a].total_cmp(&final_u[b])).unwrap_or(0);
+    let worst = (0..nh)
+        .max_by(|&a, &b| final_u[a].total_cmp(&final_u[b]))
+        .unwrap_or(0);
     let (t0, t1) = ev.span_s();
-    let group = |h: usize| task.half_joints.get(h).map(|x| x.group.clone()).unwrap_or_default();
+    let group = |h: usize| {
+        task.half_joints
+            .get(h)
+            .map(|x| x.group.clone())
+            .unwrap_or_default()
+    };
     Ok(Evaluation {
         source: r.name().to_string(),
         robot: task.robot.clone(),
@@ -406,7 +442,8 @@ pub fn stream<R: std::io::Read>(
     let mut ev = Evaluator::new(task);
     let mut s = Sample::zeros(task.model.nq());
     let mut n = 0;
-    let (mut capacity, mut fatigue_u_min) = (Vec::with_capacity(ids.len()), Vec::with_capacity(ids.len()));
+    let (mut capacity, mut fatigue_u_min) =
+        (Vec::with_capacity(ids.len()), Vec::with_capacity(ids.len()));
     while r.next(task, opts.degrees, &mut s)? {
         constant_loads(task, &r, opts, &mut s);
         check_sample(&mut ev, &r, &s)?;

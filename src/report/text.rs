@@ -1,7 +1,7 @@
 //! The human summary of a plan and its assessment.
 
-use crate::assess::rest::RestAdvice;
 use crate::assess::Assessment;
+use crate::assess::rest::RestAdvice;
 use crate::plan::{Plan, Task};
 use std::fmt::Write;
 

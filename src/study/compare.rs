@@ -16,9 +16,9 @@
 //! same table and document as one run.
 
 use super::shard::Shard;
-use crate::assess::{assess, Assessment};
+use crate::assess::{Assessment, assess};
 use crate::plan::result::Exhaustion;
-use crate::plan::{plan_task_with, Plan, PlanError, PlanOptions, Task};
+use crate::plan::{Plan, PlanError, PlanOptions, Task, plan_task_with};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
@@ -131,7 +131,13 @@ pub struct Planned {
 }
 
 /// The outcome of one planned layout.
-pub fn outcome(index: usize, file: &str, task: &Task, plan: &Plan, a: &Assessment) -> LayoutOutcome {
+pub fn outcome(
+    index: usize,
+    file: &str,
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+) -> LayoutOutcome {
     let s = &plan.summary;
     let mut problems = Vec::new();
     let mut min_clearance = f64::INFINITY;
@@ -141,7 +147,11 @@ pub fn outcome(index: usize, file: &str, task: &Task, plan: &Plan, a: &Assessmen
         if !p.reachable {
             problems.push(match &p.target_inside {
                 Some(o) => format!("'{}': the target is inside '{o}'", p.phase),
-                None => format!("'{}': out of reach by {:.0} mm", p.phase, 1000.0 * p.hand_error_m),
+                None => format!(
+                    "'{}': out of reach by {:.0} mm",
+                    p.phase,
+                    1000.0 * p.hand_error_m
+                ),
             });
         }
         if p.min_clearance_m < 0.0 {
@@ -154,7 +164,11 @@ pub fn outcome(index: usize, file: &str, task: &Task, plan: &Plan, a: &Assessmen
         }
         if let Some(m) = p.balance_margin_m {
             if m < 0.0 {
-                problems.push(format!("'{}': off balance ({:.0} mm outside the feet)", p.phase, -1000.0 * m));
+                problems.push(format!(
+                    "'{}': off balance ({:.0} mm outside the feet)",
+                    p.phase,
+                    -1000.0 * m
+                ));
             }
             min_margin = Some(min_margin.map_or(m, |x: f64| x.min(m)));
         }
@@ -193,13 +207,21 @@ pub fn outcome(index: usize, file: &str, task: &Task, plan: &Plan, a: &Assessmen
         task: plan.task.clone(),
         feasible: problems.is_empty(),
         problems,
-        min_clearance_m: if min_clearance.is_finite() { min_clearance } else { 0.0 },
+        min_clearance_m: if min_clearance.is_finite() {
+            min_clearance
+        } else {
+            0.0
+        },
         closest,
         min_balance_margin_m: min_margin,
         planned_duration_s: s.planned_duration_s,
         simulated_duration_s: s.duration_s,
         total_u_min: s.total_u,
-        u_per_hour_min: if s.duration_s > 0.0 { s.total_u * 3600.0 / s.duration_s } else { 0.0 },
+        u_per_hour_min: if s.duration_s > 0.0 {
+            s.total_u * 3600.0 / s.duration_s
+        } else {
+            0.0
+        },
         worst_group: group(&s.worst_half_joint),
         worst_u_min: s.worst_u,
         lowest_capacity: s.lowest_capacity,
@@ -272,7 +294,12 @@ pub fn rank_order(a: &LayoutOutcome, b: &LayoutOutcome, variant: Option<usize>) 
 
 impl Comparison {
     /// Ranks outcomes (from one run or merged shards) into the comparison document.
-    pub fn from_outcomes(mut layouts: Vec<LayoutOutcome>, adaptive: bool, fatigue_only: bool, floor: f64) -> Self {
+    pub fn from_outcomes(
+        mut layouts: Vec<LayoutOutcome>,
+        adaptive: bool,
+        fatigue_only: bool,
+        floor: f64,
+    ) -> Self {
         layouts.sort_by_key(|o| o.index);
         layouts.sort_by(|a, b| rank_order(a, b, None));
         for (i, o) in layouts.iter_mut().enumerate() {
@@ -428,7 +455,9 @@ pub fn compare_shard(
 pub enum MergeError {
     #[error("{file}: not a compare shard (kind '{kind}')")]
     Kind { file: String, kind: String },
-    #[error("{file}: made with other options than {first} (adaptive, fatigue-only, capacity floor and layout count must agree)")]
+    #[error(
+        "{file}: made with other options than {first} (adaptive, fatigue-only, capacity floor and layout count must agree)"
+    )]
     Options { file: String, first: String },
     #[error("layout {index} appears in two shards ({file})")]
     Twice { index: usize, file: String },
@@ -475,7 +504,7 @@ pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError
                     return Err(MergeError::Twice {
                         index: o.index,
                         file: name.clone(),
-                    })
+                    });
                 }
             }
             outcomes.push(o.clone());
@@ -520,22 +549,38 @@ pub fn comparison_table(c: &Comparison) -> String {
         Some(e) => e.describe(),
         None => "none".into(),
     });
-    row("time to exhaustion at this pace", &|o| match o.minutes_to_exhaustion {
-        Some(m) => format!("{:.1} h", m / 60.0),
-        None => "never (sustainable)".into(),
-    });
+    row(
+        "time to exhaustion at this pace",
+        &|o| match o.minutes_to_exhaustion {
+            Some(m) => format!("{:.1} h", m / 60.0),
+            None => "never (sustainable)".into(),
+        },
+    );
     row("lowest capacity (any time)", &|o| {
-        format!("{:.0} % {}", 100.0 * o.lowest_capacity, o.lowest_capacity_group)
+        format!(
+            "{:.0} % {}",
+            100.0 * o.lowest_capacity,
+            o.lowest_capacity_group
+        )
     });
-    row("endurance used by one hold", &|o| format!("{:.0} %", 100.0 * o.endurance_share));
+    row("endurance used by one hold", &|o| {
+        format!("{:.0} %", 100.0 * o.endurance_share)
+    });
     row("total U [min]", &|o| format!("{:.2}", o.total_u_min));
-    row("U per hour simulated [min]", &|o| format!("{:.2}", o.u_per_hour_min));
-    row("most fatigued group", &|o| format!("{} ({:.2} min)", o.worst_group, o.worst_u_min));
+    row("U per hour simulated [min]", &|o| {
+        format!("{:.2}", o.u_per_hour_min)
+    });
+    row("most fatigued group", &|o| {
+        format!("{} ({:.2} min)", o.worst_group, o.worst_u_min)
+    });
     row("closest clearance", &|o| {
         format!(
             "{:.0} mm{}",
             1000.0 * o.min_clearance_m,
-            o.closest.as_ref().map(|c| format!(" to {c}")).unwrap_or_default()
+            o.closest
+                .as_ref()
+                .map(|c| format!(" to {c}"))
+                .unwrap_or_default()
         )
     });
     row("balance margin", &|o| {
@@ -554,16 +599,27 @@ pub fn comparison_table(c: &Comparison) -> String {
             .map_or("—".into(), |n| format!("{n:.0} N"))
     });
     row("capable women / men", &|o| {
-        format!("{:.0} % / {:.0} %", 100.0 * o.capable_women, 100.0 * o.capable_men)
+        format!(
+            "{:.0} % / {:.0} %",
+            100.0 * o.capable_women,
+            100.0 * o.capable_men
+        )
     });
-    row("rest per cycle now", &|o| format!("{:.1} s", o.current_rest_s));
+    row("rest per cycle now", &|o| {
+        format!("{:.1} s", o.current_rest_s)
+    });
     row(
         &format!("rest needed (floor {:.2})", c.capacity_floor),
         &|o| opt_s(o.rest_needed_s),
     );
     let w0 = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
     let widths: Vec<usize> = (0..c.layouts.len())
-        .map(|i| rows.iter().map(|r| r.1[i].chars().count()).max().unwrap_or(0))
+        .map(|i| {
+            rows.iter()
+                .map(|r| r.1[i].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
         .collect();
     let mut o = String::new();
     for (name, cells) in &rows {

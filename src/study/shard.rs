@@ -29,7 +29,8 @@ impl std::str::FromStr for Shard {
     type Err = String;
     /// Parses `i/n` with 1 ≤ i ≤ n ≤ 10000.
     fn from_str(s: &str) -> Result<Self, String> {
-        let bad = || format!("a shard is written i/n with 1 <= i <= n <= 10000 (e.g. 2/4), got '{s}'");
+        let bad =
+            || format!("a shard is written i/n with 1 <= i <= n <= 10000 (e.g. 2/4), got '{s}'");
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let i: usize = i.trim().parse().map_err(|_| bad())?;
         let n: usize = n.trim().parse().map_err(|_| bad())?;

@@ -30,7 +30,7 @@ use crate::assess::assess;
 use crate::body::strength::normal_quantile;
 use crate::body::{Sex, Worker};
 use crate::plan::result::Exhaustion;
-use crate::plan::{plan_task_with, PlanError, PlanOptions, Task, TaskError, TaskFile};
+use crate::plan::{PlanError, PlanOptions, Task, TaskError, TaskFile, plan_task_with};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
@@ -141,11 +141,30 @@ pub fn sampled_population(n: usize, seed: u64) -> Vec<Member> {
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Problem {
     /// A load above the group's strength from the first instant.
-    ExceedsStrength { group: String, phase: String, load: f64 },
-    Exhaustion { t_s: f64, group: String, phase: String, load: f64 },
-    OutOfReach { phase: String, hand_error_m: f64 },
-    Collision { phase: String, clearance_m: f64, with: Option<String> },
-    OffBalance { phase: String, margin_m: f64 },
+    ExceedsStrength {
+        group: String,
+        phase: String,
+        load: f64,
+    },
+    Exhaustion {
+        t_s: f64,
+        group: String,
+        phase: String,
+        load: f64,
+    },
+    OutOfReach {
+        phase: String,
+        hand_error_m: f64,
+    },
+    Collision {
+        phase: String,
+        clearance_m: f64,
+        with: Option<String>,
+    },
+    OffBalance {
+        phase: String,
+        margin_m: f64,
+    },
 }
 
 /// One worker's outcome.
@@ -455,12 +474,20 @@ pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
             || s.capacity_floor != first.capacity_floor
             || s.workers_total != first.workers_total
         {
-            return Err(bad(name, "made for another task, population or options than the first shard".into()));
+            return Err(bad(
+                name,
+                "made for another task, population or options than the first shard".into(),
+            ));
         }
         for w in &s.workers {
             match seen.get_mut(w.index) {
                 Some(x) if !*x => *x = true,
-                _ => return Err(bad(name, format!("worker {} appears twice or is out of range", w.index))),
+                _ => {
+                    return Err(bad(
+                        name,
+                        format!("worker {} appears twice or is out of range", w.index),
+                    ));
+                }
             }
             workers.push(w.clone());
         }
@@ -469,7 +496,12 @@ pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
     if !missing.is_empty() {
         return Err(bad(
             "(all shards)",
-            format!("{} of {} workers are missing, e.g. {:?}", missing.len(), seen.len(), &missing[..missing.len().min(10)]),
+            format!(
+                "{} of {} workers are missing, e.g. {:?}",
+                missing.len(),
+                seen.len(),
+                &missing[..missing.len().min(10)]
+            ),
         ));
     }
     Ok(Sweep::from_outcomes(
@@ -486,17 +518,32 @@ pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
 pub fn problem_text(p: &Problem) -> String {
     match p {
         Problem::ExceedsStrength { group, phase, load } => {
-            format!("{group} exceeds strength ({:.0} % MVC) in '{phase}'", 100.0 * load)
+            format!(
+                "{group} exceeds strength ({:.0} % MVC) in '{phase}'",
+                100.0 * load
+            )
         }
-        Problem::Exhaustion { t_s, group, phase, load } => format!(
+        Problem::Exhaustion {
+            t_s,
+            group,
+            phase,
+            load,
+        } => format!(
             "{group} exhausted at {:.1} min in '{phase}' ({:.0} % MVC)",
             t_s / 60.0,
             100.0 * load
         ),
-        Problem::OutOfReach { phase, hand_error_m } => {
+        Problem::OutOfReach {
+            phase,
+            hand_error_m,
+        } => {
             format!("'{phase}' out of reach by {:.0} mm", 1000.0 * hand_error_m)
         }
-        Problem::Collision { phase, clearance_m, with } => format!(
+        Problem::Collision {
+            phase,
+            clearance_m,
+            with,
+        } => format!(
             "'{phase}' collides ({:.0} mm into {})",
             -1000.0 * clearance_m,
             with.as_deref().unwrap_or("an obstacle")
@@ -549,7 +596,8 @@ pub fn sweep_table(s: &Sweep) -> String {
             w.worker.strength_percentile,
             w.total_u_min,
             w.lowest_capacity,
-            w.rest_needed_s.map_or("none helps".into(), |r| format!("{r:.1} s")),
+            w.rest_needed_s
+                .map_or("none helps".into(), |r| format!("{r:.1} s")),
             if w.problems.is_empty() {
                 match w.minutes_to_exhaustion {
                     Some(m) => format!("can do it (kept up, exhausted after {:.1} h)", m / 60.0),
@@ -558,13 +606,26 @@ pub fn sweep_table(s: &Sweep) -> String {
             } else {
                 format!(
                     "CANNOT: {}",
-                    w.problems.iter().map(problem_text).collect::<Vec<_>>().join("; ")
+                    w.problems
+                        .iter()
+                        .map(problem_text)
+                        .collect::<Vec<_>>()
+                        .join("; ")
                 )
             }
         );
     }
-    let _ = writeln!(o, "\n{} of {} workers cannot do the task", s.cannot_do, s.workers.len());
-    for (name, sh) in [("all", &s.sustain_all), ("women", &s.sustain_women), ("men", &s.sustain_men)] {
+    let _ = writeln!(
+        o,
+        "\n{} of {} workers cannot do the task",
+        s.cannot_do,
+        s.workers.len()
+    );
+    for (name, sh) in [
+        ("all", &s.sustain_all),
+        ("women", &s.sustain_women),
+        ("men", &s.sustain_men),
+    ] {
         let t = share_text(name, sh);
         if !t.is_empty() {
             let _ = writeln!(o, "{t}");

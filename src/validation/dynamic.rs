@@ -8,7 +8,7 @@
 
 use crate::fatigue::stats::{icc_oneway, pearson_r};
 use crate::fatigue::units::s_to_min;
-use crate::fatigue::{met_min, MaParams, MaState, Region, ThreeCompartment, ThreeCompartmentState};
+use crate::fatigue::{MaParams, MaState, Region, ThreeCompartment, ThreeCompartmentState, met_min};
 use serde::Serialize;
 
 /// Liu et al. (2002) Eq. 13 + 14: `(M_A + M_uc)/M0` at time `t_s` for fatigue rate `f_per_s`,

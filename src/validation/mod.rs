@@ -7,5 +7,5 @@ pub mod plots;
 pub mod report;
 pub mod static_table;
 
-pub use dynamic::{dynamic_validation, DynamicValidation};
-pub use static_table::{static_validation, StaticValidation};
+pub use dynamic::{DynamicValidation, dynamic_validation};
+pub use static_table::{StaticValidation, static_validation};

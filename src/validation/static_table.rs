@@ -1,7 +1,7 @@
 //! Static validation (paper §3): MET of Eq. 8 against the 24 models of Table 2.
 
 use crate::fatigue::met_min;
-use crate::fatigue::met_models::{table2_grid, Deviation, MetModel, TABLE2};
+use crate::fatigue::met_models::{Deviation, MetModel, TABLE2, table2_grid};
 use crate::fatigue::stats::{icc_oneway, pearson_r};
 use serde::Serialize;
 

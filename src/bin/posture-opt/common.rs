@@ -84,7 +84,12 @@ impl Outputs {
         }
         Outputs { set }
     }
-    pub fn add(&mut self, what: &str, path: &Option<PathBuf>, bytes: impl FnOnce() -> anyhow::Result<Vec<u8>>) -> anyhow::Result<()> {
+    pub fn add(
+        &mut self,
+        what: &str,
+        path: &Option<PathBuf>,
+        bytes: impl FnOnce() -> anyhow::Result<Vec<u8>>,
+    ) -> anyhow::Result<()> {
         if let Some(p) = path {
             self.set.add(what, p, bytes()?);
         }

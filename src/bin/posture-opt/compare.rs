@@ -1,7 +1,7 @@
 //! `posture-opt compare A.yaml B.yaml ...`: layouts planned side by side and ranked; with
 //! `--shard i/n` one deterministic part of them, and `--merge` joins the parts.
 
-use crate::common::{bad, lib_err, print_json, stdout, AssessArgs, Outputs};
+use crate::common::{AssessArgs, Outputs, bad, lib_err, print_json, stdout};
 use posture_opt::io::read_text;
 use posture_opt::plan::Task;
 use posture_opt::study::compare::{self, CompareShard, Comparison};
@@ -29,7 +29,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         return merge(&a);
     }
     if a.files.len() > compare::MAX_LAYOUTS {
-        return Err(bad(format!("at most {} layouts per comparison (use --shard to split)", compare::MAX_LAYOUTS)));
+        return Err(bad(format!(
+            "at most {} layouts per comparison (use --shard to split)",
+            compare::MAX_LAYOUTS
+        )));
     }
     let names: Vec<String> = a.files.iter().map(|p| p.display().to_string()).collect();
     let tasks: Vec<Task> = a
@@ -53,9 +56,11 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     let mut out = Outputs::new(&inputs);
     out.add("--report", &a.assess.report, || {
         let ordered: Vec<&Task> = c.layouts.iter().map(|o| &tasks[o.index]).collect();
-        Ok(posture_opt::report::html::compare_report(&c, &ordered, &planned)
-            .map_err(lib_err)?
-            .into_bytes())
+        Ok(
+            posture_opt::report::html::compare_report(&c, &ordered, &planned)
+                .map_err(lib_err)?
+                .into_bytes(),
+        )
     })?;
     out.write()?;
     print(&c, a.assess.json)
@@ -71,7 +76,9 @@ fn print(c: &Comparison, json: bool) -> anyhow::Result<()> {
 
 fn merge(a: &Args) -> anyhow::Result<()> {
     if a.assess.report.is_some() {
-        return Err(bad("--report needs the plans: run compare without --merge for a report"));
+        return Err(bad(
+            "--report needs the plans: run compare without --merge for a report",
+        ));
     }
     let mut shards = Vec::with_capacity(a.files.len());
     for p in &a.files {

@@ -1,11 +1,11 @@
 //! `posture-opt evaluate RECORDING`: recorded work (CSV, or OpenSim .mot/.sto with a mapping)
 //! into a fatigue timeline; `--stream` evaluates samples from standard input as they come.
 
-use crate::common::{bad, lib_err, parse_sex, print_json, stdout, ClosedOutput};
+use crate::common::{ClosedOutput, bad, lib_err, parse_sex, print_json, stdout};
 use posture_opt::body::{Sex, Worker};
 use posture_opt::plan::Task;
 use posture_opt::record::opensim::Mapping;
-use posture_opt::record::{self, run::RunError, Evaluation, Input, Options};
+use posture_opt::record::{self, Evaluation, Input, Options, run::RunError};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -71,9 +71,15 @@ fn setup(a: &Args) -> anyhow::Result<Task> {
 }
 
 fn options(a: &Args) -> anyhow::Result<Options> {
-    for (name, v) in [("--right-load-kg", a.right_load_kg), ("--left-load-kg", a.left_load_kg)] {
+    for (name, v) in [
+        ("--right-load-kg", a.right_load_kg),
+        ("--left-load-kg", a.left_load_kg),
+    ] {
         if !(v.is_finite() && (0.0..=posture_opt::plan::task::MAX_LOAD_KG).contains(&v)) {
-            return Err(bad(format!("{name} must be 0..{} kg, got {v}", posture_opt::plan::task::MAX_LOAD_KG)));
+            return Err(bad(format!(
+                "{name} must be 0..{} kg, got {v}",
+                posture_opt::plan::task::MAX_LOAD_KG
+            )));
         }
     }
     Ok(Options {
@@ -98,7 +104,9 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             )));
         }
         if a.csv.is_some() || a.json || a.mapping.is_some() {
-            return Err(bad("--stream writes JSON lines to standard output: --csv, --json and --mapping do not apply"));
+            return Err(bad(
+                "--stream writes JSON lines to standard output: --csv, --json and --mapping do not apply",
+            ));
         }
         let task = setup(&a)?;
         let opts = options(&a)?;
@@ -108,7 +116,9 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         return Ok(());
     }
     let Some(rec) = &a.recording else {
-        return Err(bad("give a recording file, or --stream to read samples from standard input"));
+        return Err(bad(
+            "give a recording file, or --stream to read samples from standard input",
+        ));
     };
     let task = setup(&a)?;
     let opts = options(&a)?;
@@ -125,7 +135,11 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     inputs.extend(task.input_files.iter().map(|p| p.as_path()));
     let file = std::fs::File::open(rec).map_err(|e| bad(format!("{name}: {e}")))?;
     let reader = std::io::BufReader::with_capacity(1 << 16, file);
-    let ext = rec.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let ext = rec
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
     let input = if ext == "mot" || ext == "sto" {
         let Some(mp) = &a.mapping else {
             return Err(bad(format!(
@@ -141,9 +155,14 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         }
     } else {
         if a.mapping.is_some() {
-            return Err(bad("--mapping applies to OpenSim .mot/.sto recordings only"));
+            return Err(bad(
+                "--mapping applies to OpenSim .mot/.sto recordings only",
+            ));
         }
-        Input::Csv { reader, name: name.clone() }
+        Input::Csv {
+            reader,
+            name: name.clone(),
+        }
     };
     let ev = match &a.csv {
         Some(csv_path) => {
@@ -179,9 +198,17 @@ fn summary(e: &Evaluation) -> String {
     );
     let mut idx: Vec<usize> = (0..e.half_joint_ids.len()).collect();
     idx.sort_by(|&a, &b| e.final_capacity[a].total_cmp(&e.final_capacity[b]));
-    let _ = writeln!(o, "{:<34} {:>9} {:>10}", "muscle group", "capacity", "U [min]");
+    let _ = writeln!(
+        o,
+        "{:<34} {:>9} {:>10}",
+        "muscle group", "capacity", "U [min]"
+    );
     for &h in idx.iter().take(8) {
-        let _ = writeln!(o, "{:<34} {:>9.3} {:>10.3}", e.groups[h], e.final_capacity[h], e.final_fatigue_u_min[h]);
+        let _ = writeln!(
+            o,
+            "{:<34} {:>9.3} {:>10.3}",
+            e.groups[h], e.final_capacity[h], e.final_fatigue_u_min[h]
+        );
     }
     let _ = writeln!(
         o,
@@ -195,14 +222,22 @@ fn summary(e: &Evaluation) -> String {
         let _ = writeln!(
             o,
             "{} at {:.1} s: the {} can no longer hold {:.0} % MVC",
-            if x.exceeds_capacity_at_start { "EXCEEDS CAPACITY" } else { "EXHAUSTED" },
+            if x.exceeds_capacity_at_start {
+                "EXCEEDS CAPACITY"
+            } else {
+                "EXHAUSTED"
+            },
             x.t_s,
             x.group,
             100.0 * x.load
         );
     }
     if e.exhaustions.len() > 20 {
-        let _ = writeln!(o, "... {} exhaustion events in all (see --json)", e.exhaustions.len());
+        let _ = writeln!(
+            o,
+            "... {} exhaustion events in all (see --json)",
+            e.exhaustions.len()
+        );
     }
     if e.samples_outside_range > 0 {
         let _ = writeln!(
@@ -211,7 +246,11 @@ fn summary(e: &Evaluation) -> String {
             e.samples_outside_range
         );
     }
-    let _ = writeln!(o, "total U = {:.3} min (most: {} {:.3} min)", e.total_u_min, e.worst_group, e.worst_u_min);
+    let _ = writeln!(
+        o,
+        "total U = {:.3} min (most: {} {:.3} min)",
+        e.total_u_min, e.worst_group, e.worst_u_min
+    );
     let _ = std::io::stderr().flush();
     o
 }

@@ -2,7 +2,7 @@
 //! endurance times or capacity measurements, with confidence intervals; `--out` writes a
 //! parameter file a task uses with `fatigue: {parameters_file: FILE}`.
 
-use crate::common::{bad, lib_err, print_json, stdout, Outputs};
+use crate::common::{Outputs, bad, lib_err, print_json, stdout};
 use posture_opt::fatigue::fit::{self, Fit, FitOptions};
 use posture_opt::fatigue::params::ParameterSets;
 use posture_opt::io::read_text;
@@ -37,15 +37,24 @@ pub struct Args {
 
 pub fn run(a: Args) -> anyhow::Result<()> {
     let name = a.data.display().to_string();
-    if !(a.rest_per_min.is_finite() && (0.0..=posture_opt::fatigue::ma::R_MAX_PER_MIN).contains(&a.rest_per_min)) {
-        return Err(bad(format!("--rest-per-min must be 0..{} 1/min", posture_opt::fatigue::ma::R_MAX_PER_MIN)));
+    if !(a.rest_per_min.is_finite()
+        && (0.0..=posture_opt::fatigue::ma::R_MAX_PER_MIN).contains(&a.rest_per_min))
+    {
+        return Err(bad(format!(
+            "--rest-per-min must be 0..{} 1/min",
+            posture_opt::fatigue::ma::R_MAX_PER_MIN
+        )));
     }
     if !(a.limit_fmvc.is_finite() && (0.01..=1.0).contains(&a.limit_fmvc)) {
         return Err(bad("--limit-fmvc must be 0.01..1"));
     }
     let sets = ParameterSets::shipped();
     let Some(base) = sets.get(&a.base) else {
-        return Err(bad(format!("--base: unknown parameter set '{}'; choose one of {}", a.base, sets.names().join(", "))));
+        return Err(bad(format!(
+            "--base: unknown parameter set '{}'; choose one of {}",
+            a.base,
+            sets.names().join(", ")
+        )));
     };
     Outputs::precheck(&[("--out", &a.out)], &[&a.data])?;
     let text = read_text(&a.data).map_err(lib_err)?;
@@ -81,13 +90,27 @@ pub fn run(a: Args) -> anyhow::Result<()> {
 
 fn text_summary(f: &Fit) -> String {
     let mut o = String::new();
-    let _ = writeln!(o, "{}: {} measurements, {} parameters ({})", f.source, f.rows, f.parameters, f.method);
-    let _ = writeln!(o, "{:<10} {:>5} {:>9} {:>21} {:>10} {:>10}", "region", "rows", "k [1/min]", "95 % CI", "rms log", "max error");
+    let _ = writeln!(
+        o,
+        "{}: {} measurements, {} parameters ({})",
+        f.source, f.rows, f.parameters, f.method
+    );
+    let _ = writeln!(
+        o,
+        "{:<10} {:>5} {:>9} {:>21} {:>10} {:>10}",
+        "region", "rows", "k [1/min]", "95 % CI", "rms log", "max error"
+    );
     for r in &f.regions {
         let _ = writeln!(
             o,
             "{:<10} {:>5} {:>9.4} {:>10.4} – {:<8.4} {:>10.3} {:>9.0} %",
-            r.region, r.rows, r.k_per_min.value, r.k_per_min.low, r.k_per_min.high, r.rms_log_error, 100.0 * r.max_relative_error
+            r.region,
+            r.rows,
+            r.k_per_min.value,
+            r.k_per_min.low,
+            r.k_per_min.high,
+            r.rms_log_error,
+            100.0 * r.max_relative_error
         );
     }
     if f.rest_fitted {
@@ -97,13 +120,21 @@ fn text_summary(f: &Fit) -> String {
             f.rest_per_min.value, f.rest_per_min.low, f.rest_per_min.high, f.limit_fmvc
         );
     } else {
-        let _ = writeln!(o, "recovery at rest kept at {:.4} /min; stops at {:.3} MVC", f.rest_per_min.value, f.limit_fmvc);
+        let _ = writeln!(
+            o,
+            "recovery at rest kept at {:.4} /min; stops at {:.3} MVC",
+            f.rest_per_min.value, f.limit_fmvc
+        );
     }
     let _ = writeln!(
         o,
         "overall rms of ln(predicted/measured) = {:.3}; {} after {} iterations",
         f.rms_log_error,
-        if f.converged { "converged" } else { "NOT converged" },
+        if f.converged {
+            "converged"
+        } else {
+            "NOT converged"
+        },
         f.iterations
     );
     o

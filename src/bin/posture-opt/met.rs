@@ -44,14 +44,16 @@ fn parse_fmvc(s: &str) -> anyhow::Result<Vec<f64>> {
             }
             let n = ((b - a) / c + 1e-9).floor();
             if n > 10_000.0 {
-                return Err(bad(format!("--fmvc: range '{s}' has more than 10000 levels")));
+                return Err(bad(format!(
+                    "--fmvc: range '{s}' has more than 10000 levels"
+                )));
             }
             (0..=n as usize).map(|i| a + c * i as f64).collect()
         }
         _ => {
             return Err(bad(format!(
                 "--fmvc: '{s}' is neither a number nor START:END:STEP"
-            )))
+            )));
         }
     };
     for &f in &values {

@@ -1,9 +1,9 @@
 //! `posture-opt plan TASK.yaml`: plan, assess, print, and write the requested files.
 
-use crate::common::{bad, lib_err, print_json, stdout, AssessArgs, Outputs};
+use crate::common::{AssessArgs, Outputs, bad, lib_err, print_json, stdout};
 use posture_opt::assess::assess;
-use posture_opt::plan::{plan_task_with, Task};
-use posture_opt::report::{csv, text, PlanDocument};
+use posture_opt::plan::{Task, plan_task_with};
+use posture_opt::report::{PlanDocument, csv, text};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -39,11 +39,15 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     let assessment = assess(&task, &plan, a.assess.capacity_floor);
     let mut out = Outputs::new(&inputs);
     out.add("--csv", &a.csv, || Ok(csv::plan_csv(&plan)))?;
-    out.add("--recording", &a.recording, || Ok(csv::plan_recording_csv(&plan)))?;
+    out.add("--recording", &a.recording, || {
+        Ok(csv::plan_recording_csv(&plan))
+    })?;
     out.add("--report", &a.assess.report, || {
-        Ok(posture_opt::report::html::plan_report(&task, &plan, &assessment)
-            .map_err(lib_err)?
-            .into_bytes())
+        Ok(
+            posture_opt::report::html::plan_report(&task, &plan, &assessment)
+                .map_err(lib_err)?
+                .into_bytes(),
+        )
     })?;
     out.write()?;
     if a.assess.json {

@@ -1,7 +1,7 @@
 //! `posture-opt robot`: the URDF of a worker and its strength table, written together.
 
-use crate::common::{lib_err, parse_sex, stdout, Outputs};
-use posture_opt::body::{worker_urdf, Sex, StrengthTable, Worker};
+use crate::common::{Outputs, lib_err, parse_sex, stdout};
+use posture_opt::body::{Sex, StrengthTable, Worker, worker_urdf};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -35,7 +35,9 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             let mut out = Outputs::new(&[]);
             out.add("--out", &Some(path.clone()), || Ok(urdf.into_bytes()))?;
             out.add("strength table", &Some(sp.clone()), || {
-                Ok(posture_opt::body::strength::DEFAULT_TABLE_YAML.as_bytes().to_vec())
+                Ok(posture_opt::body::strength::DEFAULT_TABLE_YAML
+                    .as_bytes()
+                    .to_vec())
             })?;
             out.write()?;
             eprintln!("wrote {} and {}", path.display(), sp.display());

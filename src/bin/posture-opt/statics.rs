@@ -2,7 +2,7 @@
 
 use crate::common::{bad, print_json, stdout};
 use nalgebra::Vector3;
-use posture_opt::body::{statics_report, BodyModel, GRAVITY_M_S2};
+use posture_opt::body::{BodyModel, GRAVITY_M_S2, statics_report};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -82,7 +82,9 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     };
     let force = match (a.hand_load_kg, &a.hand_force) {
         (Some(m), _) if !(m.is_finite() && (0.0..=1000.0).contains(&m)) => {
-            return Err(bad(format!("--hand-load-kg must be within 0..1000 kg, got {m}")))
+            return Err(bad(format!(
+                "--hand-load-kg must be within 0..1000 kg, got {m}"
+            )));
         }
         (Some(m), _) => gravity * m,
         (None, Some(f)) => parse_vec3("--hand-force", f, 1e4)?,

@@ -1,6 +1,6 @@
 //! `posture-opt sweep TASK.yaml`: one task for a population of workers.
 
-use crate::common::{bad, lib_err, print_json, stdout, AssessArgs, Outputs};
+use crate::common::{AssessArgs, Outputs, bad, lib_err, print_json, stdout};
 use posture_opt::io::read_text;
 use posture_opt::plan::TaskFile;
 use posture_opt::study::shard::Shard;
@@ -40,12 +40,17 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         return merge(&a);
     }
     let [task_path] = a.files.as_slice() else {
-        return Err(bad("sweep plans one task file (several files only with --merge)"));
+        return Err(bad(
+            "sweep plans one task file (several files only with --merge)",
+        ));
     };
     let name = task_path.display().to_string();
     let text = read_text(task_path).map_err(lib_err)?;
     let file: TaskFile = serde_saphyr::from_str(&text).map_err(|e| {
-        bad(format!("{name}: {}", posture_opt::schema::explain_parse_error(&e.to_string())))
+        bad(format!(
+            "{name}: {}",
+            posture_opt::schema::explain_parse_error(&e.to_string())
+        ))
     })?;
     // validate once for the task's own worker, so a bad file fails before the sweep
     let task = posture_opt::plan::Task::from_task_file(file.clone(), task_path).map_err(lib_err)?;
@@ -64,11 +69,15 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let bar = indicatif::ProgressBar::new(todo as u64);
     bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} workers, {elapsed} elapsed, about {eta} left")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} workers, {elapsed} elapsed, about {eta} left",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     if todo > 6 {
-        eprintln!("planning {todo} workers; each takes seconds to a minute (two plans run at a time per core pair)");
+        eprintln!(
+            "planning {todo} workers; each takes seconds to a minute (two plans run at a time per core pair)"
+        );
     }
     let out_lock = Mutex::new(());
     let stream = a.stream;
@@ -83,11 +92,22 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             }
         }
     };
-    let workers = sweep::sweep_members(&file, task_path, &members, shard, opts, a.assess.capacity_floor, &on_done)
-        .map_err(|e| anyhow::anyhow!(e))?;
+    let workers = sweep::sweep_members(
+        &file,
+        task_path,
+        &members,
+        shard,
+        opts,
+        a.assess.capacity_floor,
+        &on_done,
+    )
+    .map_err(|e| anyhow::anyhow!(e))?;
     bar.finish_and_clear();
     if todo > 6 {
-        eprintln!("planned {todo} workers in {:.0} s", started.elapsed().as_secs_f64());
+        eprintln!(
+            "planned {todo} workers in {:.0} s",
+            started.elapsed().as_secs_f64()
+        );
     }
     if stream {
         return Ok(());
@@ -105,10 +125,19 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             workers,
         });
     }
-    let s = Sweep::from_outcomes(&file.name, &population, sampled, opts.adapt, a.assess.capacity_floor, workers);
+    let s = Sweep::from_outcomes(
+        &file.name,
+        &population,
+        sampled,
+        opts.adapt,
+        a.assess.capacity_floor,
+        workers,
+    );
     let mut out = Outputs::new(&inputs);
     out.add("--report", &a.assess.report, || {
-        Ok(posture_opt::report::html::sweep_report(&s).map_err(lib_err)?.into_bytes())
+        Ok(posture_opt::report::html::sweep_report(&s)
+            .map_err(lib_err)?
+            .into_bytes())
     })?;
     out.write()?;
     print(&s, a.assess.json)
