@@ -254,9 +254,29 @@ class Search:
                 more = S.seed_list(self.n_random + 8, offset=self.seed_offset)
                 seeds += [sd for sd in more if sd[2] is not None and sd not in seeds]
                 self.n_random += 8
-        # 4. joint polish and block sweeps
+        # 4. joint polish and block sweeps, then the best pool posture of each phase
         self.polish("final")
+        self.pool_swap()
         return self.result()
+
+    def pool_swap(self):
+        """Greedy block moves among the postures already found: each phase's pool posture that
+        lowers the total with the other phases at the best plan is taken, until none does (a
+        joint polish can move the other phases so that an earlier posture of a phase becomes
+        better than its polished one)."""
+        improved = True
+        while improved:
+            improved = False
+            for gi in range(self.t.P):
+                vals = [(self.value_with(gi, q), j) for j, (q, _) in enumerate(self.phase_pool[gi])]
+                u, j = min(vals)
+                if u < self.best["U"] - 1e-9 * abs(self.best["U"]):
+                    q, lab = self.phase_pool[gi][j]
+                    qs = [qq.copy() for qq in self.best["qs"]]
+                    qs[gi] = q.copy()
+                    origins = list(self.best["origin"])
+                    origins[gi] = lab + " > pool-swap"
+                    improved |= self.offer(qs, origins, f"{self.t.groups[gi]['name']}: pool swap")
 
     def load_previous(self, path):
         """Continue a previous search: its best plan, pool and records."""
@@ -414,6 +434,9 @@ def main():
     ap.add_argument("--out", default=None)
     ap.add_argument("--resume", default=None, help="results JSON of a previous run to continue")
     ap.add_argument("--seed-offset", type=int, default=0)
+    ap.add_argument("--pool-swap-only", action="store_true",
+                    help="only apply the final pool swap (Search.pool_swap) to an existing result "
+                         "and its .pool.json (--out or results/TASK.json), then rewrite both")
     ap.add_argument("--augment-only", action="store_true",
                     help="only (re)write the schedule, spread and inputs fields of an existing "
                          "results file (--out or results/TASK.json)")
@@ -431,7 +454,7 @@ def main():
         with open(out, "w") as fh:
             json.dump(res, fh, indent=1)
         return
-    logf = open(out.replace(".json", ".log"), "a" if a.resume else "w")
+    logf = open(out.replace(".json", ".log"), "a" if (a.resume or a.pool_swap_only) else "w")
 
     def log(msg):
         print(msg, flush=True)
@@ -439,7 +462,14 @@ def main():
         logf.flush()
 
     s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset)
-    res, rep = s.run()
+    if a.pool_swap_only:
+        with open(out) as fh:
+            s.budget = json.load(fh).get("budget_s", a.budget)
+        s.load_previous(out)
+        s.pool_swap()
+        res, rep = s.result()
+    else:
+        res, rep = s.run()
     res = augment(res, s.t, {g["name"]: [(lab, s.b.q_to_dict(q)) for q, lab in s.phase_pool[gi]]
                              for gi, g in enumerate(s.t.groups)})
     with open(out.replace(".json", ".pool.json"), "w") as fh:
