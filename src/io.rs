@@ -182,25 +182,25 @@ impl OutputSet {
                     ));
                 }
             }
-            if let Ok(meta) = std::fs::metadata(&target) {
-                if let Some(kind) = not_regular(&meta) {
-                    return Err(write_err(
-                        path,
-                        format!("{what}: is {kind}; only regular files are written"),
-                    ));
-                }
+            if let Ok(meta) = std::fs::metadata(&target)
+                && let Some(kind) = not_regular(&meta)
+            {
+                return Err(write_err(
+                    path,
+                    format!("{what}: is {kind}; only regular files are written"),
+                ));
             }
             let id = file_id(&target);
-            if let Some(id) = &id {
-                if let Some((input, _)) = self.inputs.iter().find(|(_, i)| i == id) {
-                    return Err(write_err(
-                        path,
-                        format!(
-                            "{what}: is an input of this run ({}); choose another output file",
-                            input.display()
-                        ),
-                    ));
-                }
+            if let Some(id) = &id
+                && let Some((input, _)) = self.inputs.iter().find(|(_, i)| i == id)
+            {
+                return Err(write_err(
+                    path,
+                    format!(
+                        "{what}: is an input of this run ({}); choose another output file",
+                        input.display()
+                    ),
+                ));
             }
             let canon_dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
             let key = canon_dir.join(name);

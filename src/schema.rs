@@ -458,12 +458,12 @@ fn format_default(d: &Value) -> String {
 
 /// The first `[unit]` of a description, else the unit the field's name ends in.
 fn unit_of(text: &str, name: &str) -> Option<String> {
-    if let Some(a) = text.find('[') {
-        if let Some(b) = text[a + 1..].find(']') {
-            let u = &text[a + 1..a + 1 + b];
-            if !u.is_empty() && u.len() <= 16 {
-                return Some(u.to_string());
-            }
+    if let Some(a) = text.find('[')
+        && let Some(b) = text[a + 1..].find(']')
+    {
+        let u = &text[a + 1..a + 1 + b];
+        if !u.is_empty() && u.len() <= 16 {
+            return Some(u.to_string());
         }
     }
     let by_name = [
@@ -506,12 +506,12 @@ fn default_in_text(text: &str) -> Option<String> {
                     break;
                 }
                 ',' if depth == 0 && next != Some(' ') => {}
-                ',' if depth == 0 => {
+                ',' if depth == 0
                     // "`l_foot`, `r_foot`" continues a list of names
-                    if chars.get(n + 2).map(|x| x.1) != Some('`') {
-                        end = j;
-                        break;
-                    }
+                    && chars.get(n + 2).map(|x| x.1) != Some('`') =>
+                {
+                    end = j;
+                    break;
                 }
                 '.' if depth == 0 && (next.is_none() || next == Some(' ')) => {
                     end = j;
@@ -573,16 +573,16 @@ fn range_in_text(text: &str) -> Option<String> {
         }
     }
     for (pat, word) in [("> ", "> "), ("≥ ", "≥ ")] {
-        if let Some(p) = text.find(pat) {
-            if let Some(b) = number_after(p + pat.len()) {
-                found.push((p, format!("{word}{b}")));
-            }
+        if let Some(p) = text.find(pat)
+            && let Some(b) = number_after(p + pat.len())
+        {
+            found.push((p, format!("{word}{b}")));
         }
     }
-    if let Some(p) = text.find(" or more") {
-        if let Some((_, a)) = number_before(p) {
-            found.push((p, format!("≥ {a}")));
-        }
+    if let Some(p) = text.find(" or more")
+        && let Some((_, a)) = number_before(p)
+    {
+        found.push((p, format!("≥ {a}")));
     }
     if let Some(p) = text.find("at most ") {
         let tail = &text[p + "at most ".len()..];

@@ -201,17 +201,16 @@ impl Obstacle {
         )
         .ok()
         .flatten()?;
-        if c.dist <= 1e-9 {
-            if let ShapeSpec::Cylinder {
+        if c.dist <= 1e-9
+            && let ShapeSpec::Cylinder {
                 radius_m: rc,
                 height_m,
             } = self.spec.shape
-            {
-                // parry reports a capsule whose axis lies inside a cylinder as touching (depth 0):
-                // the depth is the deepest axis point's distance to the cylinder's surface (a
-                // concave function along the segment: ternary search), plus the radius.
-                return Some(self.capsule_in_cylinder(index, a, b, radius_m, rc, height_m, c));
-            }
+        {
+            // parry reports a capsule whose axis lies inside a cylinder as touching (depth 0):
+            // the depth is the deepest axis point's distance to the cylinder's surface (a
+            // concave function along the segment: ternary search), plus the radius.
+            return Some(self.capsule_in_cylinder(index, a, b, radius_m, rc, height_m, c));
         }
         Some(Clearance {
             obstacle: index,

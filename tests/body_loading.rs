@@ -21,6 +21,7 @@
 //! * `settle_internal_force` minimises the sum of squared actuated torques along the internal
 //!   force and changes no torque of a joint that carries no foot;
 //! * `cop_jacobian` against central finite differences.
+#![allow(clippy::needless_range_loop)]
 
 use nalgebra::{Matrix2xX, Matrix3xX, Point3, Vector2, Vector3};
 use posture_opt::body::stance::{

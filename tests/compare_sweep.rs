@@ -549,7 +549,8 @@ fn check_standard_member(i: usize, label: &str, sex: Sex, stature_m: f64, pct: f
 
 /// The shipped strength table (robots/worker.strength.yaml, every number with its source):
 /// (half-joint id, male (mean, sd), female (mean, sd)) [N·m].
-fn strength_table() -> Vec<(String, (f64, f64), (f64, f64))> {
+type StrengthRow = (String, (f64, f64), (f64, f64));
+fn strength_table() -> Vec<StrengthRow> {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/robots/worker.strength.yaml"
@@ -607,9 +608,9 @@ fn standard_population_uses_the_tabulated_percentiles() {
         f.robot = None;
         let task = Task::from_task_file(f, Path::new("standard.yaml")).unwrap();
         let z = match m.worker.strength_percentile {
-            x if x == 5.0 => -Z95,
-            x if x == 50.0 => 0.0,
-            x if x == 95.0 => Z95,
+            5.0 => -Z95,
+            50.0 => 0.0,
+            95.0 => Z95,
             x => panic!("percentile {x}"),
         };
         let mut checked = 0;

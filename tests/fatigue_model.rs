@@ -280,7 +280,8 @@ fn check_hold(p: &MaParams, f: f64, dt_s: f64, c0: f64, u0: f64) -> Result<(), S
         ));
     }
     let du = s.fatigue_u_min - u0;
-    if !((du - reference.du_min).abs() <= 1e-8 * reference.du_min + 4.0 * f64::EPSILON * u0) {
+    let err = (du - reference.du_min).abs();
+    if err.is_nan() || err > 1e-8 * reference.du_min + 4.0 * f64::EPSILON * u0 {
         return Err(format!("ΔU {du} vs integrated {}", reference.du_min));
     }
     Ok(())

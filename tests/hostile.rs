@@ -13,7 +13,7 @@ use common::*;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Time limit of a run that only reads and checks its inputs.
 const T_CHECK: Duration = Duration::from_secs(60);
@@ -22,33 +22,6 @@ const T_PLAN: Duration = Duration::from_secs(300);
 
 fn hostile(p: &str) -> PathBuf {
     root().join("tests/data/hostile").join(p)
-}
-
-fn s(p: &Path) -> String {
-    p.display().to_string()
-}
-
-fn read(p: &Path) -> Vec<u8> {
-    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-}
-
-/// Runs the binary with `args` in `dir`.
-fn run_in(dir: &Path, args: &[&str], timeout: Duration) -> Out {
-    Run::new(args).cwd(dir).timeout(timeout).go()
-}
-
-/// Plans a task with `--no-adapt --json` and returns the document (exit 0, finite numbers).
-fn plan_json(dir: &Path, task: &str, extra: &[&str]) -> serde_json::Value {
-    let mut args = vec!["plan", task, "--no-adapt", "--json"];
-    args.extend_from_slice(extra);
-    let o = run_in(dir, &args, T_PLAN);
-    o.ok();
-    assert_json_finite(&o);
-    o.json()
-}
-
-fn f(v: &serde_json::Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 // ================================================================================================
@@ -246,20 +219,6 @@ mod yamlish {
         cur
     }
 
-    /// Every map key of a document.
-    pub fn keys(y: &Y, out: &mut Vec<String>) {
-        match y {
-            Y::Seq(v) => v.iter().for_each(|x| keys(x, out)),
-            Y::Map(m) => {
-                for (k, x) in m {
-                    out.push(k.clone());
-                    keys(x, out);
-                }
-            }
-            _ => {}
-        }
-    }
-
     #[derive(Clone, Debug)]
     pub enum Op {
         Set(Y, String),
@@ -391,18 +350,16 @@ mod yamlish {
                 }
             }
             Op::RemoveFirst => {
-                if let Y::Seq(v) = get_mut(&mut y, p) {
-                    if !v.is_empty() {
-                        v.remove(0);
-                    }
+                if let Y::Seq(v) = get_mut(&mut y, p)
+                    && !v.is_empty()
+                {
+                    v.remove(0);
                 }
             }
         }
         y
     }
 }
-
-use yamlish::{Seg, Y};
 
 /// FNV-1a: a deterministic hash for choosing mutants.
 fn fnv(s: &str) -> u64 {
@@ -422,7 +379,7 @@ fn choose(n: usize, per_node: usize, key: &str) -> Vec<usize> {
     }
     let stride = n.div_ceil(per_node);
     let h = (fnv(key) % stride as u64) as usize;
-    (0..n).filter(|i| (i + h) % stride == 0).collect()
+    (0..n).filter(|i| (i + h).is_multiple_of(stride)).collect()
 }
 
 /// One generated input.
@@ -568,10 +525,10 @@ fn judge(c: &Case, o: &Out) -> Result<Verdict, String> {
             }
         }
         2 => {
-            if let Some(m) = &c.accepted_marker {
-                if o.stderr.contains(m.as_str()) {
-                    return Ok(Verdict::Accepted);
-                }
+            if let Some(m) = &c.accepted_marker
+                && o.stderr.contains(m.as_str())
+            {
+                return Ok(Verdict::Accepted);
             }
             let e = &o.stderr;
             if !e.contains("error:") {

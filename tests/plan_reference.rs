@@ -319,7 +319,7 @@ fn reference_best_plans_evaluate_to_the_reference_totals() {
              {first_ex:?} s (samples outside range: {})",
             r.key, ev["samples_outside_range"]
         );
-        if !(rel <= OBJECTIVE_REL_TOL) {
+        if rel.is_nan() || rel > OBJECTIVE_REL_TOL {
             bad.push(format!(
                 "{}: reference {theirs} vs evaluate {ours} (rel {rel:.3e})",
                 r.key
@@ -433,7 +433,7 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
                 "{}: the plan's rest posture differs from the reference's by {rest_diff:.3e} rad",
                 r.key
             ));
-        } else if !(u <= med * (1.0 + MEDIAN_REL_SLACK)) {
+        } else if u.is_nan() || u > med * (1.0 + MEDIAN_REL_SLACK) {
             bad.push(format!(
                 "{}: posture-opt {u} > the reference's median sustainable local optimum {med} \
                  (ours/best {:.4})",

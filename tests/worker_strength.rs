@@ -9,6 +9,7 @@
 //! * strength means and SDs: the sources named per row below (the table's `source` lines), and the
 //!   rule MVC(p) = mean + z(p)·SD with z(0.05) = −1.6448536, z(0.5) = 0, z(0.95) = +1.6448536
 //!   (standard normal quantiles, from tables, not computed by the code under test).
+#![allow(clippy::needless_range_loop)]
 
 use nalgebra::Vector3;
 use posture_opt::body::strength::HalfJoint;
@@ -1038,7 +1039,8 @@ fn factor_at(m: &BodyModel, h: &HalfJoint, angles_deg: &[(&str, f64)]) -> f64 {
 }
 
 /// (half-joint, curve joint, tabulated (deg, factor) points, reference angle) from the table.
-const CURVES: [(&str, &str, &[(f64, f64)], f64); 13] = [
+type Curve = (&'static str, &'static str, &'static [(f64, f64)], f64);
+const CURVES: [Curve; 13] = [
     (
         "lumbar_flexion+",
         "lumbar_flexion",

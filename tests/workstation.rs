@@ -284,10 +284,7 @@ fn capsules_and_spheres_against_planes() {
         1e-12,
         "sphere under the floor",
     );
-    assert!(
-        floor.is_floor() == false,
-        "a plane at 0.8 m is not the floor"
-    );
+    assert!(!floor.is_floor(), "a plane at 0.8 m is not the floor");
     assert!(plane([0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [0.0; 3]).is_floor());
 }
 

@@ -76,11 +76,11 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
                 continue;
             }
             for h in 0..nh {
-                if let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, loads[s][h]) {
-                    if te < *d {
-                        exhausted = Some((t + te, h));
-                        break 'outer;
-                    }
+                if let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, loads[s][h])
+                    && te < *d
+                {
+                    exhausted = Some((t + te, h));
+                    break 'outer;
                 }
             }
             for h in 0..nh {
@@ -178,12 +178,11 @@ pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
         let f = &plan.postures[st.posture[i]].load;
         let d = st.duration_s[i];
         for h in 0..nh {
-            if r.exhaustion.is_none() {
-                if let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, f[h]) {
-                    if te < d {
-                        r.exhaustion = Some((st.t_s[i] + te, h));
-                    }
-                }
+            if r.exhaustion.is_none()
+                && let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, f[h])
+                && te < d
+            {
+                r.exhaustion = Some((st.t_s[i] + te, h));
             }
             params[h].hold(&mut state[h], f[h], d);
             if state[h].capacity < r.lowest_capacity {

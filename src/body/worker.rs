@@ -548,7 +548,9 @@ pub fn worker_urdf(
     let _ = writeln!(u.0, "<robot name=\"worker\">");
     // Floating pelvis: three translations, then yaw, list and tilt.
     u.empty("floor");
-    let pelvis_chain: [(&str, &str, [f64; 3], (f64, f64)); 6] = [
+    // (joint, kind, axis, limits)
+    type PelvisJoint<'a> = (&'a str, &'a str, [f64; 3], (f64, f64));
+    let pelvis_chain: [PelvisJoint; 6] = [
         ("pelvis_tx", "prismatic", [1.0, 0.0, 0.0], (-0.6, 0.6)),
         ("pelvis_ty", "prismatic", [0.0, 1.0, 0.0], (-0.5, 0.5)),
         (

@@ -223,10 +223,10 @@ pub fn predict(p: &MaParams, row: &Row) -> f64 {
     match row.what {
         Measured::EnduranceS(_) => {
             while t < MAX_ENDURANCE_S {
-                if let Some(te) = p.time_to_exhaustion_s(s.capacity, f) {
-                    if te <= on {
-                        return (t + te).min(MAX_ENDURANCE_S);
-                    }
+                if let Some(te) = p.time_to_exhaustion_s(s.capacity, f)
+                    && te <= on
+                {
+                    return (t + te).min(MAX_ENDURANCE_S);
                 }
                 p.hold(&mut s, f, on);
                 t += on;
@@ -409,10 +409,10 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
             .iter()
             .zip(&pr.region_of)
             .filter(|(_, rg)| **rg == g)
-            .filter_map(|(r, _)| match r.what {
-                Measured::EnduranceS(e) => Some(-r.load_fmvc.ln() / (r.load_fmvc * e / 60.0)),
+            .map(|(r, _)| match r.what {
+                Measured::EnduranceS(e) => -r.load_fmvc.ln() / (r.load_fmvc * e / 60.0),
                 Measured::Capacity { t_s, capacity } => {
-                    Some((-capacity.ln() / (r.load_fmvc * t_s / 60.0)).max(K_MIN_PER_MIN))
+                    (-capacity.ln() / (r.load_fmvc * t_s / 60.0)).max(K_MIN_PER_MIN)
                 }
             })
             .filter(|k| k.is_finite() && *k > 0.0)

@@ -525,10 +525,11 @@ impl<'t> Planner<'t> {
                     } else {
                         t.fatigue[h].time_to_exhaustion_s(state[h].capacity, f[h])
                     };
-                    if let Some(te) = te {
-                        if te < dur && ex.is_none_or(|(t0, _)| te < t0) {
-                            ex = Some((te, h));
-                        }
+                    if let Some(te) = te
+                        && te < dur
+                        && ex.is_none_or(|(t0, _)| te < t0)
+                    {
+                        ex = Some((te, h));
                     }
                 }
                 if let Some((te, h)) = ex {

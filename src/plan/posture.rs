@@ -270,11 +270,11 @@ impl PostureWork {
         mass_moments(m, &mut self.data);
         self.n_hands = 0;
         for h in 0..2 {
-            if let Some((link, _)) = &task.hand_links[h] {
-                if hand_force_n[h] != Vector3::zeros() {
-                    self.hands[self.n_hands] = PointLoad::force_at(*link, hand_force_n[h]);
-                    self.n_hands += 1;
-                }
+            if let Some((link, _)) = &task.hand_links[h]
+                && hand_force_n[h] != Vector3::zeros()
+            {
+                self.hands[self.n_hands] = PointLoad::force_at(*link, hand_force_n[h]);
+                self.n_hands += 1;
             }
         }
         self.loads.clear();

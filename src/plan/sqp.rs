@@ -672,11 +672,11 @@ pub fn solve_phase(
     let mut out = SqpOutcome::default();
     let mut m0 = merit(task, scene, pw, work, prob, q);
     reset_curvature(work);
-    if let Some(c) = prob.curvature.as_deref() {
-        if c.len() == work.bfgs.len() {
-            work.bfgs.copy_from_slice(c);
-            work.first_update = false;
-        }
+    if let Some(c) = prob.curvature.as_deref()
+        && c.len() == work.bfgs.len()
+    {
+        work.bfgs.copy_from_slice(c);
+        work.first_update = false;
     }
     work.reset_once = false;
     loop {
@@ -835,19 +835,19 @@ pub fn restore(
             rows.push((task.objective.clearance_m - c.distance_m, grad.clone()));
         }
         // a violated balance margin: the worst edge back to the margin
-        if let (Some(st), Some(g)) = (&task.stance, pw.ground) {
-            if g.margin_m < task.objective.balance_margin_m {
-                pw.centre_of_pressure_jacobian(task);
-                if let Some((nrm, d)) = st.edges().min_by(|a, b| {
-                    (a.1 - a.0.dot(&g.cop_total_m)).total_cmp(&(b.1 - b.0.dot(&g.cop_total_m)))
-                }) {
-                    // margin = d − n·p must rise to the minimum: −n·J_p Δ = m_min − margin
-                    let row: Vec<f64> = (0..n)
-                        .map(|k| -(nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)]))
-                        .collect();
-                    let margin = d - nrm.dot(&g.cop_total_m);
-                    rows.push((task.objective.balance_margin_m - margin, row));
-                }
+        if let (Some(st), Some(g)) = (&task.stance, pw.ground)
+            && g.margin_m < task.objective.balance_margin_m
+        {
+            pw.centre_of_pressure_jacobian(task);
+            if let Some((nrm, d)) = st.edges().min_by(|a, b| {
+                (a.1 - a.0.dot(&g.cop_total_m)).total_cmp(&(b.1 - b.0.dot(&g.cop_total_m)))
+            }) {
+                // margin = d − n·p must rise to the minimum: −n·J_p Δ = m_min − margin
+                let row: Vec<f64> = (0..n)
+                    .map(|k| -(nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)]))
+                    .collect();
+                let margin = d - nrm.dot(&g.cop_total_m);
+                rows.push((task.objective.balance_margin_m - margin, row));
             }
         }
         if rows.is_empty() {

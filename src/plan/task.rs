@@ -521,30 +521,30 @@ impl Task {
                 let urdf = path.parent().unwrap_or(Path::new(".")).join(r);
                 let model =
                     BodyModel::from_urdf_file(&urdf).map_err(|e| field("robot", e.to_string()))?;
-                if let Ok(text) = crate::io::read_text(&urdf) {
-                    if let Some(made_for) = generated_for(&text) {
-                        let w = &f.worker;
-                        if made_for.0 != w.sex.name()
-                            || (made_for.1 - w.stature_m).abs() > 5e-4
-                            || (made_for.2 - w.mass_kg).abs() > 5e-3
-                        {
-                            return Err(field(
-                                "robot",
-                                format!(
-                                    "{} was generated for a {} of {} m and {} kg, but the task's worker is a {} of {} m and {} kg: regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
-                                    urdf.display(),
-                                    made_for.0,
-                                    made_for.1,
-                                    made_for.2,
-                                    w.sex.name(),
-                                    w.stature_m,
-                                    w.mass_kg,
-                                    w.sex.name(),
-                                    w.stature_m,
-                                    w.mass_kg
-                                ),
-                            ));
-                        }
+                if let Ok(text) = crate::io::read_text(&urdf)
+                    && let Some(made_for) = generated_for(&text)
+                {
+                    let w = &f.worker;
+                    if made_for.0 != w.sex.name()
+                        || (made_for.1 - w.stature_m).abs() > 5e-4
+                        || (made_for.2 - w.mass_kg).abs() > 5e-3
+                    {
+                        return Err(field(
+                            "robot",
+                            format!(
+                                "{} was generated for a {} of {} m and {} kg, but the task's worker is a {} of {} m and {} kg: regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
+                                urdf.display(),
+                                made_for.0,
+                                made_for.1,
+                                made_for.2,
+                                w.sex.name(),
+                                w.stature_m,
+                                w.mass_kg,
+                                w.sex.name(),
+                                w.stature_m,
+                                w.mass_kg
+                            ),
+                        ));
                     }
                 }
                 input_files.push(urdf.clone());
@@ -754,13 +754,13 @@ impl Task {
         if f.replan.every_cycles == 0 {
             return Err(field("replan.every_cycles", "must be >= 1".into()));
         }
-        if let Some(s) = f.replan.every_s {
-            if !(s.is_finite() && s > 0.0 && s <= MAX_DURATION_S) {
-                return Err(field(
-                    "replan.every_s",
-                    format!("must be within 0 s and a year, got {s}"),
-                ));
-            }
+        if let Some(s) = f.replan.every_s
+            && !(s.is_finite() && s > 0.0 && s <= MAX_DURATION_S)
+        {
+            return Err(field(
+                "replan.every_s",
+                format!("must be within 0 s and a year, got {s}"),
+            ));
         }
         if !(f.replan.capacity_tolerance.is_finite()
             && (0.0..1.0).contains(&f.replan.capacity_tolerance))

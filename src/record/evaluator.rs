@@ -127,20 +127,19 @@ impl<'t> Evaluator<'t> {
             for h in 0..self.state.len() {
                 let f = self.loads[h];
                 let p = &self.task.fatigue[h];
-                if !self.exhausted[h] {
-                    if let Some(te) = p.time_to_exhaustion_s(self.state[h].capacity, f) {
-                        if te < dt {
-                            self.exhausted[h] = true;
-                            let hj = &self.task.half_joints[h];
-                            self.events.push(ExhaustionEvent {
-                                t_s: t0 + te,
-                                half_joint: hj.id.clone(),
-                                group: hj.group.clone(),
-                                load: f,
-                                exceeds_capacity_at_start: te <= 0.0,
-                            });
-                        }
-                    }
+                if !self.exhausted[h]
+                    && let Some(te) = p.time_to_exhaustion_s(self.state[h].capacity, f)
+                    && te < dt
+                {
+                    self.exhausted[h] = true;
+                    let hj = &self.task.half_joints[h];
+                    self.events.push(ExhaustionEvent {
+                        t_s: t0 + te,
+                        half_joint: hj.id.clone(),
+                        group: hj.group.clone(),
+                        load: f,
+                        exceeds_capacity_at_start: te <= 0.0,
+                    });
                 }
                 p.hold(&mut self.state[h], f, dt);
                 if self.state[h].capacity < self.lowest.0 {

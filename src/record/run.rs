@@ -217,7 +217,7 @@ impl Timeline {
         if self.stride == 0 {
             self.stride = 1;
         }
-        if i % self.stride != 0 {
+        if !i.is_multiple_of(self.stride) {
             return;
         }
         if self.t_s.len() >= TIMELINE_POINTS {
@@ -238,7 +238,7 @@ impl Timeline {
             keep(&mut self.fatigue_u_min);
             keep(&mut self.load);
             self.stride *= 2;
-            if i % self.stride != 0 {
+            if !i.is_multiple_of(self.stride) {
                 return;
             }
         }
@@ -461,10 +461,10 @@ pub fn stream<R: std::io::Read>(
         serde_json::to_writer(&mut out, &line).map_err(|e| RunError::Write(e.to_string()))?;
         out.write_all(b"\n").map_err(werr)?;
         n += 1;
-        if let Reader::Csv { reader, .. } = &r {
-            if reader.buffer().is_empty() {
-                out.flush().map_err(werr)?;
-            }
+        if let Reader::Csv { reader, .. } = &r
+            && reader.buffer().is_empty()
+        {
+            out.flush().map_err(werr)?;
         }
     }
     out.flush().map_err(werr)?;

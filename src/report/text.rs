@@ -219,10 +219,10 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                     .unwrap_or("-".into())
             );
         }
-        if let Some(c) = &l.composite {
-            if let Some(cli) = c.cli {
-                let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
-            }
+        if let Some(c) = &l.composite
+            && let Some(cli) = c.cli
+        {
+            let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
         }
     }
     o.push_str(&rest_summary(&a.rest));

@@ -312,12 +312,11 @@ pub fn scan_text(s: &str) -> Vec<String> {
             bad.push(tok.to_string());
             continue;
         }
-        if tok.as_bytes()[0].is_ascii_digit() || tok.starts_with(['-', '+', '.']) {
-            if let Ok(x) = tok.trim_end_matches('.').parse::<f64>() {
-                if !x.is_finite() || x.abs() >= 1e300 {
-                    bad.push(truncate(tok, 40));
-                }
-            }
+        if (tok.as_bytes()[0].is_ascii_digit() || tok.starts_with(['-', '+', '.']))
+            && let Ok(x) = tok.trim_end_matches('.').parse::<f64>()
+            && (!x.is_finite() || x.abs() >= 1e300)
+        {
+            bad.push(truncate(tok, 40));
         }
         if bad.len() > 20 {
             break;
@@ -412,10 +411,10 @@ fn walk(v: &serde_json::Value, path: &str, key: Option<&str>, bad: &mut Vec<Stri
             }
         }
         Value::Number(n) => {
-            if let Some(x) = n.as_f64() {
-                if !x.is_finite() || x.abs() >= 1e300 {
-                    bad.push(format!("{path} = {x}"));
-                }
+            if let Some(x) = n.as_f64()
+                && (!x.is_finite() || x.abs() >= 1e300)
+            {
+                bad.push(format!("{path} = {x}"));
             }
         }
         Value::String(_) | Value::Bool(_) => {}
