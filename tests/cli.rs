@@ -363,3 +363,76 @@ fn plan_json_contract_and_csv() {
     assert_eq!(code, 2);
     assert!(err.contains("/nonexistent.yaml"));
 }
+
+/// `validate recovery` checks the set `plan` uses by default, with its recovery, against the
+/// published figures; the paper's set without recovery cannot meet the intermittent and recovery
+/// data (pauses restore nothing), and an unknown set is refused with the valid names.
+#[test]
+fn validate_recovery_checks_the_planning_model() {
+    let (code, out, _) = run(&["validate", "recovery", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["is_default"], true);
+    // the set a task without a `fatigue:` block plans with
+    let sets = posture_opt::fatigue::params::ParameterSets::shipped();
+    assert_eq!(v["parameters"], sets.default_set.as_str());
+    assert_eq!(v["passed"], v["total"]);
+    // every region's sustainable load below the classic 15 %MVC
+    for e in v["endurance"].as_array().unwrap() {
+        let f = e["sustainable_load"].as_f64().unwrap();
+        assert!(f > 0.0 && f < 0.15, "{e}");
+    }
+    let (code, out, _) = run(&["validate", "recovery", "--parameters", "ma2009", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["is_default"], false);
+    let checks = v["checks"].as_array().unwrap();
+    let gonzales = checks
+        .iter()
+        .find(|c| c["source"].as_str().unwrap().starts_with("Gonzales"))
+        .unwrap();
+    // without recovery 5 s pauses restore nothing: the work time is MET(0.5) = ln 2/(0.5 k) min,
+    // plus one 5-s pause after each completed 5-s bout
+    let grip = v["endurance"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["region"] == "grip")
+        .unwrap();
+    let k = grip["k_per_min"].as_f64().unwrap();
+    let work_s = std::f64::consts::LN_2 / (0.5 * k) * 60.0;
+    let expected_s = work_s + 5.0 * (work_s / 5.0).floor();
+    let model_s = gonzales["model"].as_f64().unwrap();
+    assert!(
+        (model_s - expected_s).abs() < 1e-6 * expected_s,
+        "{model_s} vs {expected_s}"
+    );
+    assert_eq!(gonzales["pass"], false);
+    let (code, _, err) = run(&["validate", "recovery", "--parameters", "nope"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("default-2026") && err.contains("nope"),
+        "{err}"
+    );
+}
+
+/// `met` with a constant recovery prints the sustainable load of its closed form
+/// f* = (−R + √(R² + 4kR))/2k.
+#[test]
+fn met_prints_the_sustainable_load() {
+    let (code, out, _) = run(&[
+        "met",
+        "--fmvc",
+        "0.4",
+        "--k-per-min",
+        "1.4",
+        "--r-per-min",
+        "0.3",
+    ]);
+    assert_eq!(code, 0);
+    let f = (-0.3 + (0.09f64 + 4.0 * 1.4 * 0.3).sqrt()) / 2.8;
+    assert!(
+        out.contains(&format!("sustainable load {:.1} %MVC", 100.0 * f)),
+        "{out}"
+    );
+}

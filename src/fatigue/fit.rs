@@ -281,6 +281,9 @@ pub struct RegionFit {
     pub rms_log_error: f64,
     /// Largest |predicted/measured − 1|.
     pub max_relative_error: f64,
+    /// The largest load this region holds forever with the fitted k and recovery (fraction of
+    /// MVC).
+    pub sustainable_load: f64,
 }
 
 /// The fit.
@@ -525,16 +528,30 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
             high: (v + t * se).min(700.0).exp(),
         }
     };
+    let rest_per_min = if fit_rest {
+        theta[np - 1].exp()
+    } else {
+        opts.rest_per_min
+    };
     let regions = pr
         .regions
         .iter()
         .enumerate()
         .map(|(g, name)| {
             let idx: Vec<usize> = (0..n).filter(|&i| pr.region_of[i] == g).collect();
+            let sustainable_load = MaParams::with_recovery(
+                theta[g].exp(),
+                Recovery::Perfusion {
+                    rest_per_min,
+                    limit_fmvc: opts.limit_fmvc,
+                },
+            )
+            .map_or(0.0, |p| p.sustainable_load());
             RegionFit {
                 region: name.clone(),
                 rows: idx.len(),
                 k_per_min: est(g),
+                sustainable_load,
                 rms_log_error: (idx.iter().map(|&i| r[i] * r[i]).sum::<f64>() / idx.len() as f64)
                     .sqrt(),
                 max_relative_error: idx

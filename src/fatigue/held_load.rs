@@ -20,6 +20,8 @@ pub struct HeldLoad {
 pub struct MetReport {
     pub k_per_min: f64,
     pub recovery_per_min: f64,
+    /// The largest load held forever under this recovery (fraction of MVC; 0 without recovery).
+    pub sustainable_load: f64,
     pub levels: Vec<HeldLoad>,
 }
 
@@ -49,6 +51,7 @@ pub fn met_report(p: &MaParams, levels: &[f64], points: usize) -> MetReport {
     MetReport {
         k_per_min: p.k_per_min,
         recovery_per_min: p.r_at(0.0),
+        sustainable_load: p.sustainable_load(),
         levels,
     }
 }

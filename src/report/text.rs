@@ -64,9 +64,10 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
     );
     let _ = writeln!(
         o,
-        "fatigue parameters: {} ({}); {:.0} min planned in {} cycles of {:.0} s",
+        "fatigue parameters: {} ({}){}; {:.0} min planned in {} cycles of {:.0} s",
         p.fatigue_parameters.set,
         p.fatigue_model,
+        sustainable_words(&p.half_joints),
         s.planned_duration_s / 60.0,
         task.cycles,
         task.cycle_s()
@@ -226,5 +227,62 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
         }
     }
     o.push_str(&rest_summary(&a.rest));
+    if let Some(u) = &a.uncertainty {
+        o.push_str(&sensitivity_table(u));
+    }
     o
+}
+
+/// How the key results move across the parameter set's documented ranges.
+pub fn sensitivity_table(u: &crate::assess::uncertainty::Sensitivity) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "parameter uncertainty ({}: {}); exhausted in {} of {} variants",
+        u.parameter_set,
+        u.method,
+        u.exhausted_in,
+        u.outcomes.len()
+    );
+    let _ = writeln!(
+        o,
+        "  {:<16} {:>22} {:>16} {:>16}",
+        "variant", "time to exhaustion", "lowest capacity", "rest per cycle"
+    );
+    for v in &u.outcomes {
+        let _ = writeln!(
+            o,
+            "  {:<16} {:>22} {:>16} {:>16}",
+            v.variant,
+            match (v.minutes_to_exhaustion, v.exhausted_in_task) {
+                (_, true) => "within the task".to_string(),
+                (Some(m), false) => format!("{m:.0} min"),
+                (None, false) => "never".to_string(),
+            },
+            format!("{:.2}", v.lowest_capacity),
+            v.rest_needed_s
+                .map(|r| format!("{r:.1} s"))
+                .unwrap_or("cannot help".into())
+        );
+    }
+    o
+}
+
+/// "; sustainable load 7.7–8.0 %MVC" over the plan's muscle groups (nothing without recovery).
+fn sustainable_words(groups: &[crate::plan::result::HalfJointInfo]) -> String {
+    let (lo, hi) = groups.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), g| {
+        (lo.min(g.sustainable_load), hi.max(g.sustainable_load))
+    });
+    if groups.is_empty() || hi <= 0.0 {
+        return String::new();
+    }
+    if (hi - lo) * 100.0 < 0.05 {
+        format!("; sustainable load {:.1} %MVC", 100.0 * hi)
+    } else {
+        format!(
+            "; sustainable load {:.1}–{:.1} %MVC by muscle group",
+            100.0 * lo,
+            100.0 * hi
+        )
+    }
 }

@@ -1,6 +1,6 @@
 //! Human-readable tables of the validations and of `met`.
 
-use super::{DynamicValidation, StaticValidation};
+use super::{DynamicValidation, RecoveryValidation, StaticValidation};
 use crate::fatigue::MetReport;
 use std::fmt::Write;
 
@@ -56,6 +56,63 @@ pub fn static_table(v: &StaticValidation) -> String {
         count("explained"),
         count("unexplained")
     );
+    s
+}
+
+/// The planning model's check against endurance, intermittent and recovery data, as text.
+pub fn recovery_table(v: &RecoveryValidation) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "The planning model against published data: parameter set '{}'{}\nrecovery: {}\n",
+        v.parameters,
+        if v.is_default {
+            " (the one `plan` uses by default)"
+        } else {
+            ""
+        },
+        v.recovery
+    );
+    let _ = writeln!(
+        s,
+        "1. Sustained endurance against Frey-Law & Avin (2010) power curves: model / curve"
+    );
+    let _ = write!(s, "   {:<10} {:>8}", "region", "k [/min]");
+    for f in &v.endurance[0].fmvc {
+        let _ = write!(s, "  {:>5.0} %MVC", 100.0 * f);
+    }
+    let _ = writeln!(s, "  {:>18}", "sustainable load");
+    for e in &v.endurance {
+        let _ = write!(s, "   {:<10} {:>8.3}", e.region, e.k_per_min);
+        for r in &e.model_over_curve {
+            let _ = write!(s, "  {:>10.2}", r);
+        }
+        let _ = writeln!(s, "  {:>12.1} %MVC", 100.0 * e.sustainable_load);
+    }
+    let _ = writeln!(s, "\n2. Published figures");
+    for (i, c) in v.checks.iter().enumerate() {
+        let verdict = match (c.pass, c.band) {
+            (true, Some(b)) => format!("within ±{:.0} %", 100.0 * b),
+            (false, Some(b)) => format!("OUTSIDE ±{:.0} %", 100.0 * b),
+            (true, None) => "holds".into(),
+            (false, None) => "FAILS".into(),
+        };
+        let _ = writeln!(
+            s,
+            "   {}. {} — {}\n      {}: measured {:.4}, model {:.4}: {}",
+            i + 1,
+            c.source,
+            c.condition,
+            c.quantity,
+            c.measured,
+            c.model,
+            verdict
+        );
+        if let Some(n) = &c.note {
+            let _ = writeln!(s, "      ({n})");
+        }
+    }
+    let _ = writeln!(s, "\n{} of {} checks hold", v.passed, v.total);
     s
 }
 
@@ -152,8 +209,17 @@ pub fn met_table(r: &MetReport) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "k = {} /min, R = {} /min",
-        r.k_per_min, r.recovery_per_min
+        "k = {} /min, R = {} /min{}",
+        r.k_per_min,
+        r.recovery_per_min,
+        if r.recovery_per_min > 0.0 {
+            format!(
+                "; sustainable load {:.1} %MVC (a load below it is held forever)",
+                100.0 * r.sustainable_load
+            )
+        } else {
+            String::new()
+        }
     );
     for l in &r.levels {
         match l.met_min {

@@ -97,20 +97,21 @@ fn text_summary(f: &Fit) -> String {
     );
     let _ = writeln!(
         o,
-        "{:<10} {:>5} {:>9} {:>21} {:>10} {:>10}",
-        "region", "rows", "k [1/min]", "95 % CI", "rms log", "max error"
+        "{:<10} {:>5} {:>9} {:>21} {:>10} {:>10} {:>12}",
+        "region", "rows", "k [1/min]", "95 % CI", "rms log", "max error", "sustainable"
     );
     for r in &f.regions {
         let _ = writeln!(
             o,
-            "{:<10} {:>5} {:>9.4} {:>10.4} – {:<8.4} {:>10.3} {:>9.0} %",
+            "{:<10} {:>5} {:>9.4} {:>10.4} – {:<8.4} {:>10.3} {:>9.0} % {:>6.1} %MVC",
             r.region,
             r.rows,
             r.k_per_min.value,
             r.k_per_min.low,
             r.k_per_min.high,
             r.rms_log_error,
-            100.0 * r.max_relative_error
+            100.0 * r.max_relative_error,
+            100.0 * r.sustainable_load
         );
     }
     if f.rest_fitted {

@@ -1,8 +1,12 @@
-//! `posture-opt validate static|dynamic`: the paper's validations, tables and figures.
+//! `posture-opt validate static|dynamic|recovery`: the paper's validations, tables and figures,
+//! and the planning model (with recovery) against published data.
 
 use crate::common::{lib_err, print_json, stdout};
 use posture_opt::fatigue::MaParams;
-use posture_opt::validation::{dynamic_validation, plots, report, static_validation};
+use posture_opt::fatigue::params::ParameterSets;
+use posture_opt::validation::{
+    dynamic_validation, plots, recovery_validation, report, static_validation,
+};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -17,6 +21,18 @@ enum Which {
     Static(Opts),
     /// §4: Liu et al. at MVC, Freund-Takala, Wexler's trend, Frey-Law & Avin endurance curves.
     Dynamic(Opts),
+    /// The model `plan` uses (a named parameter set, with recovery) against published endurance,
+    /// intermittent-work and recovery data.
+    Recovery(RecoveryOpts),
+}
+
+#[derive(clap::Args)]
+struct RecoveryOpts {
+    /// The parameter set to check (default: the one `plan` uses).
+    #[arg(long)]
+    parameters: Option<String>,
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(clap::Args)]
@@ -56,6 +72,22 @@ pub fn run(a: Args) -> anyhow::Result<()> {
                 print_json(&v)
             } else {
                 stdout(report::dynamic_table(&v).as_bytes())
+            }
+        }
+        Which::Recovery(o) => {
+            let sets = ParameterSets::shipped();
+            let name = o.parameters.unwrap_or_else(|| sets.default_set.clone());
+            let set = sets.get(&name).ok_or_else(|| {
+                lib_err(format!(
+                    "--parameters: no set named '{name}' (the sets: {})",
+                    sets.names().join(", ")
+                ))
+            })?;
+            let v = recovery_validation(set, name == sets.default_set).map_err(lib_err)?;
+            if o.json {
+                print_json(&v)
+            } else {
+                stdout(report::recovery_table(&v).as_bytes())
             }
         }
     }
