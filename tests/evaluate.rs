@@ -685,16 +685,16 @@ fn refused(name: &str, text: &str, needles: &[&str]) {
 #[test]
 fn bad_recordings_are_located_and_nothing_is_written() {
     let head = "t_s,r_elbow_flexion,load_kg\n";
-    // time that does not increase (the message names the line; see the report on the column)
+    // time that does not increase: the message names the line and the column
     refused(
         "repeat.csv",
         &format!("{head}0,0.5,1\n1,0.5,2\n1,0.5,2\n"),
-        &["line 4", "does not increase"],
+        &["line 4", "column 1 (time)", "does not increase"],
     );
     refused(
         "back.csv",
         &format!("{head}0,0.5,1\n-1,0.5,2\n"),
-        &["line 3", "does not increase"],
+        &["line 3", "column 1 (time)", "does not increase"],
     );
     // not-a-number, infinite, not a number, empty
     refused(
@@ -836,7 +836,7 @@ fn bad_samples_are_located_in_the_library_and_on_standard_input() {
     let o = Run::new(&["evaluate", "--stream"])
         .stdin("t_s,r_elbow_flexion,load_kg\n0,0.5,1\n1,0.5,1\n0.5,0.5,1\n")
         .go();
-    o.bad(&["stdin: line 4", "does not increase"]);
+    o.bad(&["stdin: line 4", "column 1 (time)", "does not increase"]);
     assert_eq!(
         o.stdout_text().lines().count(),
         3,

@@ -721,7 +721,7 @@ impl<'t> Planner<'t> {
                     phase: ph.name.clone(),
                     q_rad: q.clone(),
                     hand_error_m: sol.hand_error_m,
-                    reachable: sol.hand_error_m <= 0.01,
+                    reachable: sol.hand_error_m <= super::search::REACH_TOL_M,
                     target_inside,
                     min_clearance_m: sol.min_clearance_m,
                     closest,

@@ -177,8 +177,29 @@ impl<'t> PhaseSolver<'t> {
     }
 
     /// Solves one phase from `start` (local), or globally from the seeds when `multistart`.
-    /// `q` receives the posture.
+    /// `q` receives the posture: the best that meets the targets, the feet, the balance and the
+    /// clearances, or, when no posture does, the nearest one that keeps everything but the
+    /// targets ([`Self::nearest_feasible`]).
     pub fn solve(
+        &mut self,
+        spec: &PhaseSpec,
+        cost: &mut dyn LoadCost,
+        start: Option<&[f64]>,
+        multistart: bool,
+        q: &mut Vec<f64>,
+    ) -> Result<(SqpOutcome, SearchStats), QpError> {
+        let (mut out, stats) = self.solve_elastic(spec, cost, start, multistart, q)?;
+        if (out.hand_error_m > REACH_TOL_M || out.feasibility > INFEASIBLE_M)
+            && let Some((nq, nout)) = self.nearest_feasible(spec, cost, q)?
+        {
+            *q = nq;
+            out = nout;
+        }
+        Ok((out, stats))
+    }
+
+    /// [`Self::solve`] with the targets, feet, balance and clearances as penalties only.
+    fn solve_elastic(
         &mut self,
         spec: &PhaseSpec,
         cost: &mut dyn LoadCost,
@@ -261,6 +282,79 @@ impl<'t> PhaseSolver<'t> {
         ))
     }
 
+    /// A target out of reach (of the hand, or of a hand that keeps the balance): the elastic
+    /// solve reaches as far as it can, but it trades the hand's distance against the feet and the
+    /// balance margin (their slacks are penalties too), so its posture may lean off balance or
+    /// slide a foot. The posture reported instead is the
+    /// best one that keeps every other constraint exactly: each hand's target is moved back on
+    /// the line from where that hand is at rest toward the real target, and the farthest point
+    /// still reached with feet, balance and clearances intact is found by bisection (local
+    /// solves from the previous feasible posture). `None` when even the rest-side end fails.
+    fn nearest_feasible(
+        &mut self,
+        spec: &PhaseSpec,
+        cost: &mut dyn LoadCost,
+        q_elastic: &[f64],
+    ) -> Result<Option<(Vec<f64>, SqpOutcome)>, QpError> {
+        let task = self.task;
+        let q_rest = self.q_rest.clone();
+        self.pw.statics(task, &q_rest, &[Vector3::zeros(); 2]);
+        let anchor: [Option<Vector3<f64>>; 2] =
+            std::array::from_fn(|h| self.pw.hand_position(task, h));
+        let along = |lambda: f64| -> [Option<Vector3<f64>>; 2] {
+            std::array::from_fn(|h| match (spec.targets_m[h], anchor[h]) {
+                (Some(t), Some(a)) => Some(a + lambda * (t - a)),
+                (t, _) => t,
+            })
+        };
+        let full = self.settings;
+        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+        let mut found: Option<(Vec<f64>, SqpOutcome)> = None;
+        for i in 0..NEAREST_BISECTIONS {
+            // try the rest-side end once first if nothing has worked yet
+            let lambda = if i == NEAREST_BISECTIONS - 1 && found.is_none() {
+                0.0
+            } else {
+                0.5 * (lo + hi)
+            };
+            let proxy = PhaseSpec {
+                targets_m: along(lambda),
+                hand_force_n: spec.hand_force_n,
+                discomfort_weight: spec.discomfort_weight,
+                capacity: spec.capacity,
+                memory: None,
+            };
+            let mut qq = found
+                .as_ref()
+                .map_or_else(|| q_elastic.to_vec(), |(q, _)| q.clone());
+            solve_ik(
+                task,
+                &mut self.pw,
+                &proxy.targets_m,
+                &qq.clone(),
+                &mut qq,
+                IkSettings::default(),
+            );
+            let out = self.run(&proxy, cost, &mut qq, full)?;
+            if out.hand_error_m <= FEASIBLE_TOL && out.feasibility <= FEASIBLE_TOL {
+                lo = lambda;
+                found = Some((qq, out));
+            } else {
+                hi = lambda;
+            }
+        }
+        Ok(found.map(|(q, mut out)| {
+            // the error against the real targets
+            self.pw.statics(task, &q, &spec.hand_force_n);
+            out.hand_error_m = (0..2)
+                .filter_map(|h| {
+                    Some((self.pw.hand_position(task, h)? - spec.targets_m[h]?).norm())
+                })
+                .fold(0.0, f64::max);
+            (q, out)
+        }))
+    }
+
     fn run(
         &mut self,
         spec: &PhaseSpec,
@@ -296,6 +390,19 @@ impl<'t> PhaseSolver<'t> {
         r
     }
 }
+
+/// A hand this far from its target \[m\] has not reached it (the planner's "out of reach").
+pub const REACH_TOL_M: f64 = 0.01;
+
+/// Bisection steps of [`PhaseSolver::nearest_feasible`] (the reach found to 2⁻⁸ of the way).
+const NEAREST_BISECTIONS: usize = 8;
+
+/// A solve violating its feet, balance or clearances by more than this \[m\] (typically a hand
+/// that reaches by leaning off balance) is replaced by the nearest feasible posture.
+const INFEASIBLE_M: f64 = 1e-3;
+
+/// Largest violation of a feasible solve \[m or rad\].
+const FEASIBLE_TOL: f64 = 1e-4;
 
 /// Ranks outcomes: feasible (targets met, no collision or balance violation) first, then by
 /// objective. Infeasible ones rank by their violation.

@@ -3,7 +3,7 @@
 use super::csv_recording::{Columns, MAX_LINE_BYTES, read_line_bounded};
 use super::evaluator::{Evaluator, ExhaustionEvent};
 use super::opensim::{MappedMotion, Mapping, StorageReader};
-use super::{RecordingError, Sample};
+use super::{EvalError, RecordingError, Sample};
 use crate::plan::Task;
 use serde::Serialize;
 use std::io::{BufRead, Write};
@@ -200,6 +200,16 @@ fn sample_err<R: BufRead>(r: &Reader<R>, problem: String) -> RunError {
     }
 }
 
+/// [`sample_err`] for a sample the evaluator refused; a time error names the time column.
+fn eval_err<R: BufRead>(r: &Reader<R>, e: EvalError) -> RunError {
+    let problem = match e {
+        // a recording's time is its first column
+        EvalError::Time { .. } => format!("column 1 (time): {e}"),
+        e => e.to_string(),
+    };
+    sample_err(r, problem)
+}
+
 /// The evaluation timeline, thinned to at most [`TIMELINE_POINTS`] samples.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Timeline {
@@ -333,7 +343,7 @@ pub fn evaluate<R: BufRead>(
     while r.next(task, opts.degrees, &mut s)? {
         constant_loads(task, &r, opts, &mut s);
         check_sample(&mut ev, &r, &s)?;
-        ev.push(&s).map_err(|e| sample_err(&r, e.to_string()))?;
+        ev.push(&s).map_err(|e| eval_err(&r, e))?;
         timeline.push(i, s.t_s, &ev);
         if let Some(w) = csv.as_mut() {
             row.clear();
@@ -447,7 +457,7 @@ pub fn stream<R: std::io::Read>(
     while r.next(task, opts.degrees, &mut s)? {
         constant_loads(task, &r, opts, &mut s);
         check_sample(&mut ev, &r, &s)?;
-        let new = ev.push(&s).map_err(|e| sample_err(&r, e.to_string()))?;
+        let new = ev.push(&s).map_err(|e| eval_err(&r, e))?;
         capacity.clear();
         capacity.extend(ev.state.iter().map(|x| x.capacity));
         fatigue_u_min.clear();

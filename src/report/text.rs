@@ -108,7 +108,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 String::new()
             } else {
                 format!(
-                    " — TARGET OUT OF REACH by {:.0} mm{}",
+                    " — TARGET OUT OF REACH by {:.0} mm (feet in place, balance kept){}",
                     1000.0 * ph.hand_error_m,
                     ph.target_inside
                         .as_ref()
