@@ -607,3 +607,61 @@ fn a_cross_body_reach_does_not_pass_through_the_body() {
     // self-collision constraint is active, not idle
     assert!(closest < 0.012, "closest gap {closest} m: the constraint was not tested");
 }
+
+/// The held object is part of the geometry: a box carried 5 cm into a table is a collision of
+/// the phase (closest "held object ↔ obstacle 'table'", negative clearance), while a box resting
+/// on a surface is not; no shipped task carries its object through an obstacle. The overlap is
+/// computed here from the boxes' extents, independently of the library.
+#[test]
+fn a_held_object_inside_an_obstacle_is_a_collision() {
+    let task = |z: f64| {
+        let text = format!(
+            "name: t
+worker: {{sex: male, stature_m: 1.755, mass_kg: 78.0}}
+workstation:
+  obstacles:
+    - {{name: floor, plane: {{normal: [0, 0, 1]}}}}
+    - {{name: table, box: {{size_m: [0.4, 0.6, 0.9]}}, position_m: [0.75, 0.0, 0.45]}}
+phases:
+  - {{name: hold, object: {{center_m: [0.45, 0.0, {z}], grip_width_m: 0.3, size_m: [0.4, 0.3, 0.2]}}, load_kg: 2.0, duration_s: 5.0}}
+rest_s: 5.0
+cycles: 2
+"
+        );
+        Task::from_yaml_str(&text, std::path::Path::new("object.yaml")).unwrap()
+    };
+    // the box spans x 0.25..0.65 and the table x 0.55..0.95: 10 cm of x overlap; the box's
+    // bottom is at z − 0.1 and the table top at 0.9
+    let sunk = task(0.95); // bottom at 0.85: 5 cm into the table (x overlap 10 cm is deeper)
+    let p = plan(&sunk);
+    let ph = &p.summary.phases[0];
+    let depth = (0.9_f64 - 0.85).min(0.65 - 0.55);
+    assert!(
+        (ph.min_clearance_m + depth).abs() < 1e-6,
+        "{} vs {}",
+        ph.min_clearance_m,
+        -depth
+    );
+    assert!(
+        ph.closest.as_deref() == Some("held object ↔ obstacle 'table'"),
+        "{:?}",
+        ph.closest
+    );
+    let resting = task(1.0); // bottom exactly on the table top
+    let ph = &plan(&resting).summary.phases[0];
+    assert!(ph.min_clearance_m >= -1e-3, "{}", ph.min_clearance_m);
+    // shipped tasks
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tasks");
+    for e in std::fs::read_dir(dir).unwrap() {
+        let t = Task::from_file(e.unwrap().path()).unwrap();
+        for ph in &t.phases {
+            assert_eq!(
+                posture_opt::plan::planner::object_overlap(&t, ph),
+                None,
+                "{}: '{}'",
+                t.name,
+                ph.name
+            );
+        }
+    }
+}

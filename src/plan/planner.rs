@@ -717,13 +717,21 @@ impl<'t> Planner<'t> {
                         .map(|c| describe_contact(t, c.link, &c.other));
                     (0.0, c)
                 };
+                // The held object sits where the task puts it (between the hands' targets):
+                // an overlap with an obstacle deeper than resting contact is a collision.
+                let (min_clearance_m, closest) = match object_overlap(t, ph) {
+                    Some((d, name)) if d < sol.min_clearance_m => {
+                        (d, Some(format!("held object ↔ obstacle '{name}'")))
+                    }
+                    _ => (sol.min_clearance_m, closest),
+                };
                 PhaseSummary {
                     phase: ph.name.clone(),
                     q_rad: q.clone(),
                     hand_error_m: sol.hand_error_m,
                     reachable: sol.hand_error_m <= super::search::REACH_TOL_M,
                     target_inside,
-                    min_clearance_m: sol.min_clearance_m,
+                    min_clearance_m,
                     closest,
                     balance_margin_m: sol
                         .balance_margin_m
@@ -750,6 +758,27 @@ impl<'t> Planner<'t> {
     pub fn rest_solve(&self) -> SqpOutcome {
         self.rest_solve
     }
+}
+
+/// How far a held object may sink into a surface and still count as resting on it \[m\].
+pub const OBJECT_CONTACT_TOL_M: f64 = 0.005;
+
+/// The deepest overlap of phase `ph`'s held object (an axis-aligned box at its place) with an
+/// obstacle, when deeper than resting contact: (signed distance \[m\], obstacle name).
+pub fn object_overlap(t: &Task, ph: &super::task::Phase) -> Option<(f64, String)> {
+    let o = ph.object?;
+    let world_from_box = nalgebra::Isometry3::translation(o.center_m[0], o.center_m[1], o.center_m[2]);
+    let half = Vector3::new(o.size_m[0], o.size_m[1], o.size_m[2]) / 2.0;
+    t.workstation
+        .obstacles
+        .iter()
+        .enumerate()
+        .filter_map(|(i, ob)| {
+            ob.box_clearance(i, &world_from_box, &half, 0.0)
+                .map(|c| (c.distance_m, ob.spec.name.clone()))
+        })
+        .filter(|(d, _)| *d < -OBJECT_CONTACT_TOL_M)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
 }
 
 /// "obstacle 'cart'" or "right forearm ↔ trunk".
