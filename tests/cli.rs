@@ -436,3 +436,68 @@ fn met_prints_the_sustainable_load() {
         "{out}"
     );
 }
+
+/// Key paths of a JSON document (objects' keys, arrays' elements merged as `[]`), to `depth`.
+fn key_paths(
+    v: &serde_json::Value,
+    prefix: &str,
+    depth: usize,
+    out: &mut std::collections::BTreeSet<String>,
+) {
+    if depth == 0 {
+        return;
+    }
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                let p = format!("{prefix}.{k}");
+                out.insert(p.clone());
+                key_paths(x, &p, depth - 1, out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            for x in a {
+                key_paths(x, &format!("{prefix}[]"), depth, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The README's example of `plan --json` on the pallet lift has exactly the keys a run of that
+/// task writes today (down to four levels), so the example cannot fall behind the program.
+#[test]
+fn readme_json_example_has_the_keys_of_a_real_run() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let start = readme
+        .find("<!-- pallet plan json -->")
+        .expect("the README marks its JSON example");
+    let block = &readme[start..];
+    let open = block.find("```json\n").unwrap() + "```json\n".len();
+    let close = open + block[open..].find("\n```").unwrap();
+    let example: serde_json::Value = serde_json::from_str(&block[open..close]).unwrap();
+    // the same task, three cycles instead of 360
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root.join("tasks/pallet.yaml"))
+        .unwrap()
+        .replace("cycles: 360", "cycles: 3")
+        .replace(
+            "../robots/worker.urdf",
+            &root.join("robots/worker.urdf").display().to_string(),
+        );
+    let task = dir.path().join("pallet.yaml");
+    std::fs::write(&task, text).unwrap();
+    let (code, out, err) = run(&["plan", task.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let real: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let (mut a, mut b) = (Default::default(), Default::default());
+    key_paths(&example, "", 4, &mut a);
+    key_paths(&real, "", 4, &mut b);
+    let missing: Vec<_> = b.difference(&a).collect();
+    let extra: Vec<_> = a.difference(&b).collect();
+    assert!(
+        missing.is_empty() && extra.is_empty(),
+        "README example lacks {missing:?}; has keys the program no longer writes: {extra:?}"
+    );
+}

@@ -426,7 +426,7 @@ fn plan_report_is_self_contained_well_formed_and_complete() {
             h.id
         );
     }
-    // big sections start a new printed page
+    // big sections are marked as such
     assert!(html.matches("<section class=\"major\">").count() >= 3);
 }
 

@@ -605,7 +605,10 @@ fn a_cross_body_reach_does_not_pass_through_the_body() {
     }
     // the arm rests against the body at the planner's clearance (10 mm by default): the
     // self-collision constraint is active, not idle
-    assert!(closest < 0.012, "closest gap {closest} m: the constraint was not tested");
+    assert!(
+        closest < 0.012,
+        "closest gap {closest} m: the constraint was not tested"
+    );
 }
 
 /// The held object is part of the geometry: a box carried 5 cm into a table is a collision of

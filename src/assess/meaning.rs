@@ -117,6 +117,15 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         .fold((1.0, 0), |a, b| if b.0 < a.0 { b } else { a });
     let group = |h: usize| task.half_joints[h].group.clone();
     let words = match exhausted {
+        // the plan as executed (re-planned as the muscles tire) lasts, but its final postures
+        // held from the start would not: say both, the plan first
+        Some((te, h)) if te <= task.duration_s() && replayed.exhaustion.is_none() => format!(
+            "the task can be done as planned, by changing posture as the muscles tire; the final postures held from the start would tire the {} out after {:.0} min; at the end the {} keep {:.0} % of their strength",
+            group(h),
+            te / 60.0,
+            group(c_h),
+            100.0 * c_left
+        ),
         Some((te, h)) if te <= task.duration_s() => format!(
             "at this pace the {} give out after {:.0} min, before the task's {:.0} min are over",
             group(h),
@@ -124,16 +133,16 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
             task.duration_s() / 60.0
         ),
         Some((te, h)) => format!(
-            "the task can be done; kept up, the {} would give out after {:.1} h; at the end {:.0} % of the {}'s strength is left",
+            "the task can be done; kept up, the {} would give out after {:.1} h; at the end the {} keep {:.0} % of their strength",
             group(h),
             te / 3600.0,
-            100.0 * c_left,
-            group(c_h)
+            group(c_h),
+            100.0 * c_left
         ),
         None => format!(
-            "this pace can be kept up indefinitely: every muscle group settles above its loads; at the end {:.0} % of the {}'s strength is left",
-            100.0 * c_left,
-            group(c_h)
+            "this pace can be kept up indefinitely: every muscle group settles above its loads; at the end the {} keep {:.0} % of their strength",
+            group(c_h),
+            100.0 * c_left
         ),
     };
     Meaning {

@@ -129,9 +129,18 @@ pub fn describe(a: &BodyAngles) -> String {
     }
     for (name, arm) in [("right", &a.right), ("left", &a.left)] {
         if arm.upper_arm_flexion_deg.abs() >= 20.0 || arm.upper_arm_abduction_deg >= 20.0 {
+            // angles against the trunk, as RULA and REBA take them (a stooped trunk with arms
+            // hanging has its arms far forward of the trunk)
+            let sagittal = if arm.upper_arm_flexion_deg >= 0.0 {
+                format!(
+                    "raised {:.0}° forward of the trunk",
+                    arm.upper_arm_flexion_deg
+                )
+            } else {
+                format!("{:.0}° behind the trunk", -arm.upper_arm_flexion_deg)
+            };
             parts.push(format!(
-                "{name} upper arm raised {:.0}° forward{}",
-                arm.upper_arm_flexion_deg,
+                "{name} upper arm {sagittal}{}",
                 if arm.upper_arm_abduction_deg >= 20.0 {
                     format!(", {:.0}° out to the side", arm.upper_arm_abduction_deg)
                 } else {

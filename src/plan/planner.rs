@@ -767,7 +767,8 @@ pub const OBJECT_CONTACT_TOL_M: f64 = 0.005;
 /// obstacle, when deeper than resting contact: (signed distance \[m\], obstacle name).
 pub fn object_overlap(t: &Task, ph: &super::task::Phase) -> Option<(f64, String)> {
     let o = ph.object?;
-    let world_from_box = nalgebra::Isometry3::translation(o.center_m[0], o.center_m[1], o.center_m[2]);
+    let world_from_box =
+        nalgebra::Isometry3::translation(o.center_m[0], o.center_m[1], o.center_m[2]);
     let half = Vector3::new(o.size_m[0], o.size_m[1], o.size_m[2]) / 2.0;
     t.workstation
         .obstacles

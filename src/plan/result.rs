@@ -86,7 +86,7 @@ impl Exhaustion {
     pub fn describe(&self) -> String {
         if self.exceeds_strength {
             format!(
-                "{} exceeds strength ({:.0} % MVC) in '{}'",
+                "the load on the {} exceeds their strength ({:.0} % MVC) in '{}'",
                 self.group,
                 100.0 * self.load,
                 self.phase

@@ -347,9 +347,7 @@ impl<'t> PhaseSolver<'t> {
             // the error against the real targets
             self.pw.statics(task, &q, &spec.hand_force_n);
             out.hand_error_m = (0..2)
-                .filter_map(|h| {
-                    Some((self.pw.hand_position(task, h)? - spec.targets_m[h]?).norm())
-                })
+                .filter_map(|h| Some((self.pw.hand_position(task, h)? - spec.targets_m[h]?).norm()))
                 .fold(0.0, f64::max);
             (q, out)
         }))

@@ -6,7 +6,12 @@ use crate::plan::{Plan, Task};
 use std::fmt::Write;
 
 /// Work/rest advice as text lines.
-pub fn rest_summary(r: &RestAdvice) -> String {
+pub fn rest_summary(r: &RestAdvice, p: &Plan) -> String {
+    let group = |id: &str| {
+        p.half_joint(id)
+            .map(|i| p.half_joints[i].group.clone())
+            .unwrap_or(id.to_string())
+    };
     let mut o = String::new();
     let _ = writeln!(
         o,
@@ -18,7 +23,9 @@ pub fn rest_summary(r: &RestAdvice) -> String {
             let _ = writeln!(
                 o,
                 "  model: {x:.1} s of rest per cycle keeps every capacity >= {:.2} (lowest now {:.2}, {})",
-                r.capacity_floor, r.model.min_capacity_current, r.model.limiting_half_joint
+                r.capacity_floor,
+                r.model.min_capacity_current,
+                group(&r.model.limiting_half_joint)
             );
         }
         None => {
@@ -32,7 +39,7 @@ pub fn rest_summary(r: &RestAdvice) -> String {
         if r.rohmert.limiting_half_joint.is_empty() {
             String::new()
         } else {
-            format!(" ({})", r.rohmert.limiting_half_joint)
+            format!(" ({})", group(&r.rohmert.limiting_half_joint))
         }
     );
     o
@@ -50,7 +57,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
     let w = &task.worker;
     let _ = writeln!(
         o,
-        "{} — {} plan for a {} of {:.2} m and {:.0} kg (strength percentile {:.0})",
+        "{} — {} plan for a {} of {:.3} m and {:.0} kg (strength percentile {:.0})",
         p.task,
         if s.adaptive {
             "fatigue-adaptive"
@@ -226,7 +233,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
         }
     }
-    o.push_str(&rest_summary(&a.rest));
+    o.push_str(&rest_summary(&a.rest, p));
     if let Some(u) = &a.uncertainty {
         o.push_str(&sensitivity_table(u));
     }

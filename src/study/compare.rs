@@ -353,18 +353,8 @@ fn findings(layouts: &[LayoutOutcome], robustness: &[Robustness]) -> Vec<String>
     };
     f.push(format!("best layout: {} ({})", best.file, verdict(best)));
     for o in &layouts[1..] {
-        let mut s = format!("{}: {}", o.file, verdict(o));
-        if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
-            let change = best.worst_u_min / o.worst_u_min - 1.0;
-            let _ = write!(
-                s,
-                "; {} changes the {}' fatigue by {:+.0} %",
-                best.file,
-                best.worst_group,
-                100.0 * change
-            );
-        }
-        f.push(s);
+        f.push(format!("{}: {}", o.file, verdict(o)));
+        f.push(what_changes(best, o));
     }
     for r in robustness {
         f.push(format!(
@@ -376,6 +366,44 @@ fn findings(layouts: &[LayoutOutcome], robustness: &[Robustness]) -> Vec<String>
         f.push("no layout is feasible for this worker: see the problems listed".into());
     }
     f
+}
+
+/// What choosing the best layout instead of `o` changes, in plain words and numbers.
+fn what_changes(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
+    let rel = |b: f64, a: f64| {
+        if a > 0.0 {
+            format!("{:+.0} %", 100.0 * (b / a - 1.0))
+        } else {
+            "from 0".into()
+        }
+    };
+    let mut parts = vec![format!(
+        "fatigue per hour {} ({:.1} → {:.1} min/h)",
+        rel(best.u_per_hour_min, o.u_per_hour_min),
+        o.u_per_hour_min,
+        best.u_per_hour_min
+    )];
+    if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
+        parts.push(format!(
+            "the {}' fatigue {}",
+            best.worst_group,
+            rel(best.worst_u_min, o.worst_u_min)
+        ));
+    }
+    parts.push(format!(
+        "lowest capacity {:.0} % → {:.0} %",
+        100.0 * o.lowest_capacity,
+        100.0 * best.lowest_capacity
+    ));
+    if let (Some(a), Some(b)) = (o.back_compression_max_n, best.back_compression_max_n) {
+        parts.push(format!("highest L5/S1 compression {a:.0} → {b:.0} N"));
+    }
+    parts.push(format!(
+        "women strong enough {:.0} % → {:.0} %",
+        100.0 * o.capable_women,
+        100.0 * best.capable_women
+    ));
+    format!("{} instead of {}: {}", best.file, o.file, parts.join("; "))
 }
 
 /// One layout's verdict in words.

@@ -61,6 +61,32 @@ const WOMEN: SexData = SexData {
     mass_kg: [47.0, 62.0, 84.0],
 };
 const Z95: f64 = 1.644_853_626_951_472_2;
+
+fn sex_data(sex: Sex) -> &'static SexData {
+    match sex {
+        Sex::Male => &MEN,
+        Sex::Female => &WOMEN,
+    }
+}
+
+/// The percentile (0–100) of a stature among workers of `sex` (the population the sweep samples:
+/// normal stature).
+pub fn stature_percentile(sex: Sex, stature_m: f64) -> f64 {
+    use statrs::distribution::ContinuousCDF;
+    let d = sex_data(sex);
+    let z = (stature_m - d.stature_mean_m) / d.stature_sd_m;
+    100.0 * statrs::distribution::Normal::standard().cdf(z)
+}
+
+/// The percentile (0–100) of a body mass among workers of `sex` (log-normal through the 5th,
+/// 50th and 95th percentiles the sweep uses).
+pub fn mass_percentile(sex: Sex, mass_kg: f64) -> f64 {
+    use statrs::distribution::ContinuousCDF;
+    let d = sex_data(sex);
+    let sd_ln = (d.mass_kg[2].ln() - d.mass_kg[0].ln()) / (2.0 * Z95);
+    let z = (mass_kg.ln() - d.mass_kg[1].ln()) / sd_ln;
+    100.0 * statrs::distribution::Normal::standard().cdf(z)
+}
 /// Correlation of stature and ln(mass) in the sampled population (ASSUMPTION).
 const STATURE_MASS_CORRELATION: f64 = 0.45;
 
@@ -599,9 +625,23 @@ pub fn sweep_table(s: &Sweep) -> String {
             w.rest_needed_s
                 .map_or("none helps".into(), |r| format!("{r:.1} s")),
             if w.problems.is_empty() {
-                match w.minutes_to_exhaustion {
-                    Some(m) => format!("can do it (kept up, exhausted after {:.1} h)", m / 60.0),
-                    None => "can do it (sustainable)".to_string(),
+                if w.lowest_capacity < s.capacity_floor || w.rest_needed_s.is_none() {
+                    format!(
+                        "can do it only by changing posture (capacity falls to {:.0} %)",
+                        100.0 * w.lowest_capacity
+                    )
+                } else {
+                    match w.minutes_to_exhaustion {
+                        Some(m) => format!(
+                            "can do it (kept up, exhausted after {})",
+                            if m < 90.0 {
+                                format!("{m:.1} min")
+                            } else {
+                                format!("{:.1} h", m / 60.0)
+                            }
+                        ),
+                        None => "can do it (sustainable)".to_string(),
+                    }
                 }
             } else {
                 format!(

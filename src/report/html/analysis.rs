@@ -2,6 +2,7 @@
 //! rested muscle's endurance one hold uses, each muscle group's lowest capacity, and the phase
 //! that matters most.
 
+use crate::assess::Assessment;
 use crate::fatigue::MaParams;
 use crate::plan::{Plan, Task};
 
@@ -134,8 +135,17 @@ pub fn group_courses(task: &Task, plan: &Plan, strain: &[PhaseStrain]) -> Vec<Gr
                 max_load_phase: None,
                 endurance_share: 0.0,
             };
-            for (p, s) in strain.iter().enumerate() {
-                let f = s.loads.get(h).copied().unwrap_or(0.0);
+            // every posture held, not only the last plan's: re-planning moves load between
+            // groups, and a group's highest load may come from an earlier plan
+            let held = st.posture.iter().zip(&st.phase).filter_map(|(&k, name)| {
+                let p = task.phases.iter().position(|p| &p.name == name)?;
+                Some((p, plan.postures.get(k)?.load.get(h).copied()?))
+            });
+            let last = strain
+                .iter()
+                .enumerate()
+                .map(|(p, s)| (p, s.loads.get(h).copied().unwrap_or(0.0)));
+            for (p, f) in held.chain(last) {
                 if f.is_finite() && f > g.max_load {
                     g.max_load = f;
                     g.max_load_phase = Some(p);
@@ -161,18 +171,64 @@ pub enum WorstWhy {
     Problem,
     /// The exhaustion happens in this phase.
     Exhaustion,
+    /// A hazard the field's limits name: L5/S1 compression above NIOSH's action limit, or fewer
+    /// than 75 % of women strong enough (the NIOSH/3DSSPP design limit).
+    Hazard,
     /// The muscle group whose capacity falls lowest holds its highest load here.
     Limiting(usize),
     /// The largest share of a rested muscle's endurance per hold.
     Endurance,
     /// The largest load.
     Load,
+    /// Not this layout's own hardest phase: shown because it is the hardest of another layout
+    /// (the comparison report draws one phase for every layout).
+    Compared,
+}
+
+/// Share of women who must be strong enough for a phase (NIOSH's design criterion, as 3DSSPP
+/// uses it).
+pub const DESIGN_CAPABLE_WOMEN: f64 = 0.75;
+
+/// The hazards of phase `p` by the field's limits, in words (empty: none).
+pub fn hazards(a: &Assessment, p: usize) -> Vec<String> {
+    let mut out = Vec::new();
+    let Some(pa) = a.phases.get(p) else {
+        return out;
+    };
+    if let Some(b) = &pa.low_back {
+        let limits = crate::assess::low_back::BackParams::default();
+        if b.compression_n > limits.compression_max_limit_n {
+            out.push(format!(
+                "L5/S1 compression {:.0} N, above NIOSH's maximum permissible limit ({:.0} N)",
+                b.compression_n, limits.compression_max_limit_n
+            ));
+        } else if b.compression_n > limits.compression_action_limit_n {
+            out.push(format!(
+                "L5/S1 compression {:.0} N, above NIOSH's action limit ({:.0} N)",
+                b.compression_n, limits.compression_action_limit_n
+            ));
+        }
+    }
+    if pa.capable_women < DESIGN_CAPABLE_WOMEN {
+        out.push(format!(
+            "only {:.0} % of women are strong enough, below the design limit of {:.0} %",
+            100.0 * pa.capable_women,
+            100.0 * DESIGN_CAPABLE_WOMEN
+        ));
+    }
+    out
 }
 
 /// The phase that matters most: one the worker cannot do, else the one where a group gives
-/// out, else the one where the group that falls lowest holds its highest load, else the largest
-/// endurance share, else the largest load.
-pub fn worst_phase(task: &Task, plan: &Plan, strain: &[PhaseStrain]) -> Option<(usize, WorstWhy)> {
+/// out, else the one with the most hazards by the field's limits ([`hazards`]; ties: the higher
+/// L5/S1 compression), else the one where the group that falls lowest holds its highest load,
+/// else the largest endurance share, else the largest load.
+pub fn worst_phase(
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    strain: &[PhaseStrain],
+) -> Option<(usize, WorstWhy)> {
     let n = task.phases.len().min(plan.summary.phases.len());
     if n == 0 {
         return None;
@@ -187,6 +243,24 @@ pub fn worst_phase(task: &Task, plan: &Plan, strain: &[PhaseStrain]) -> Option<(
         && let Some(p) = task.phases.iter().position(|p| p.name == e.phase)
     {
         return Some((p, WorstWhy::Exhaustion));
+    }
+    let compression = |p: usize| {
+        a.phases
+            .get(p)
+            .and_then(|x| x.low_back.as_ref())
+            .map_or(0.0, |b| b.compression_n)
+    };
+    if let Some(p) = (0..n)
+        .filter(|&p| !hazards(a, p).is_empty())
+        .max_by(|&x, &y| {
+            hazards(a, x)
+                .len()
+                .cmp(&hazards(a, y).len())
+                .then(compression(x).total_cmp(&compression(y)))
+                .then(y.cmp(&x))
+        })
+    {
+        return Some((p, WorstWhy::Hazard));
     }
     if plan.summary.lowest_capacity < 0.999
         && let Some(h) = plan.half_joint(&plan.summary.lowest_capacity_half_joint)

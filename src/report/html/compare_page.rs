@@ -37,19 +37,27 @@ fn robust_level(wins: usize, of: usize) -> Level {
 }
 
 /// The comparison's findings with a level each (they follow `Comparison::findings`' order: the
-/// best layout, every other layout, the robustness lines, then a closing remark).
+/// best layout; for every other layout its verdict and what choosing the best instead changes;
+/// the robustness lines; then a closing remark).
 fn findings_html(c: &Comparison) -> Vec<Finding> {
     let n = c.layouts.len();
     let r = c.robustness.len();
+    let per_layout = 1 + 2 * n.saturating_sub(1);
     c.findings
         .iter()
         .enumerate()
         .map(|(i, text)| {
-            let lv = if c.findings.len() >= n + r {
-                if i < n {
-                    level(&c.layouts[i])
-                } else if i < n + r {
-                    let x = &c.robustness[i - n];
+            let lv = if c.findings.len() >= per_layout + r {
+                if i == 0 {
+                    level(&c.layouts[0])
+                } else if i < per_layout {
+                    if (i - 1) % 2 == 0 {
+                        level(&c.layouts[1 + (i - 1) / 2])
+                    } else {
+                        Level::Info
+                    }
+                } else if i < per_layout + r {
+                    let x = &c.robustness[i - per_layout];
                     robust_level(x.wins, x.variants)
                 } else {
                     Level::Bad
@@ -352,9 +360,12 @@ fn card(
     ]));
     if let Some((scene, fr, ph, why)) = frame {
         let name = task.phases.get(ph).map(|x| x.name.as_str()).unwrap_or("");
+        let hazards = esc(&super::analysis::hazards(&p.assessment, ph).join("; "));
         let why = match why {
             WorstWhy::Problem => "the worker cannot do it",
             WorstWhy::Exhaustion => "a muscle group gives out",
+            WorstWhy::Hazard => hazards.as_str(),
+            WorstWhy::Compared => "the hardest phase of the lowest-ranked layout, for comparison",
             WorstWhy::Limiting(_) => "the muscle group that falls lowest is loaded most",
             WorstWhy::Endurance => "the most endurance used per hold",
             WorstWhy::Load => "the highest load",
@@ -388,6 +399,12 @@ pub fn body(c: &Comparison, tasks: &[&Task], planned: &[Planned]) -> Result<Stri
     let n = c.layouts.len().min(tasks.len()).min(planned.len());
     // each drawn layout's hardest phase, at one shared scale
     let mut drawn: Vec<Option<(Scene, body_view::Frame, usize, WorstWhy)>> = Vec::with_capacity(n);
+    let focus: Option<String> = planned.len().checked_sub(1).and_then(|last| {
+        let (task, plan) = (tasks[last], &planned[last].plan);
+        let strain = phase_strain(task, plan);
+        worst_phase(task, plan, &planned[last].assessment, &strain)
+            .map(|(p, _)| task.phases[p].name.clone())
+    });
     for i in 0..n {
         if i >= MAX_DRAWN {
             drawn.push(None);
@@ -395,7 +412,19 @@ pub fn body(c: &Comparison, tasks: &[&Task], planned: &[Planned]) -> Result<Stri
         }
         let (task, plan) = (tasks[i], &planned[i].plan);
         let strain = phase_strain(task, plan);
-        match worst_phase(task, plan, &strain) {
+        // every layout shows the same phase when it can: the hardest phase of the lowest-ranked
+        // layout, where the layouts differ most
+        let own = worst_phase(task, plan, &planned[i].assessment, &strain);
+        let same = focus.as_ref().and_then(|name| {
+            task.phases
+                .iter()
+                .position(|p| &p.name == name)
+                .map(|p| match own {
+                    Some((q, why)) if q == p => (p, why),
+                    _ => (p, WorstWhy::Compared),
+                })
+        });
+        match same.or(own) {
             Some((p, why)) if p < plan.summary.phases.len() => {
                 let sc = body_view::scene(task, &plan.summary.phases[p].q_rad, Some(p))?;
                 let fr = body_view::frame(

@@ -22,6 +22,22 @@ const DASHES: [&str; 6] = ["", "8 3", "3 2", "10 3 2 3", "5 2 1 2", "2 2"];
 /// Groups highlighted, and grey groups behind them.
 const HIGHLIGHT: usize = 6;
 const GREY: usize = 10;
+/// Curves closer than this everywhere (capacity, fraction of strength) are drawn as one.
+const COINCIDE: f64 = 2e-3;
+
+/// "left and right shoulder flexors" for a pair of sides, else the names joined by " = ".
+fn joined_names(names: &[String]) -> String {
+    if let [a, b] = names {
+        for (x, y) in [("left ", "right "), ("right ", "left ")] {
+            if let (Some(ra), Some(rb)) = (a.strip_prefix(x), b.strip_prefix(y))
+                && ra == rb
+            {
+                return format!("left and right {ra}");
+            }
+        }
+    }
+    names.join(" = ")
+}
 /// Time slices across the task.
 const SLICES: usize = 360;
 
@@ -176,20 +192,44 @@ pub fn capacity_figures(plan: &Plan, courses: &[GroupCourse], floor: f64) -> Str
         return "<p>No muscle group tires in this task: every capacity stays at 100\u{a0}%.</p>"
             .into();
     }
-    let hi: Vec<&GroupCourse> = tired.iter().take(HIGHLIGHT).copied().collect();
-    let grey: Vec<&GroupCourse> = tired.iter().skip(HIGHLIGHT).take(GREY).copied().collect();
-    let rest: Vec<&GroupCourse> = courses.iter().skip(HIGHLIGHT + grey.len()).collect();
-    let name = |h: usize| {
+    // Groups whose curves coincide (a symmetric two-handed hold tires left and right alike) are
+    // one line with both names, so that no curve hides under another.
+    let group_name = |h: usize| {
         plan.half_joints
             .get(h)
-            .map(|x| x.group.as_str())
-            .unwrap_or("?")
+            .map(|x| x.group.clone())
+            .unwrap_or("?".into())
     };
+    let mut hi: Vec<&GroupCourse> = Vec::new();
+    let mut data: Vec<Vec<(f64, f64, f64)>> = Vec::new();
+    let mut labels: Vec<Vec<String>> = Vec::new();
+    let mut used = 0;
+    for c in &tired {
+        if hi.len() == HIGHLIGHT {
+            break;
+        }
+        used += 1;
+        let d = slices(&series(plan, c.h), t_end);
+        let same = data.iter().position(|e| {
+            e.len() == d.len()
+                && e.iter()
+                    .zip(&d)
+                    .all(|(a, b)| (a.1 - b.1).abs() < COINCIDE && (a.2 - b.2).abs() < COINCIDE)
+        });
+        match same {
+            Some(i) => labels[i].push(group_name(c.h)),
+            None => {
+                hi.push(c);
+                data.push(d);
+                labels.push(vec![group_name(c.h)]);
+            }
+        }
+    }
+    let labels: Vec<String> = labels.iter().map(|l| joined_names(l)).collect();
+    let grey: Vec<&GroupCourse> = tired.iter().skip(used).take(GREY).copied().collect();
+    let rest: Vec<&GroupCourse> = courses.iter().skip(used + grey.len()).collect();
+    let name = |i: usize| labels[i].as_str();
     let (div, tu) = time_unit(t_end);
-    let data: Vec<Vec<(f64, f64, f64)>> = hi
-        .iter()
-        .map(|c| slices(&series(plan, c.h), t_end))
-        .collect();
     let mut o = String::new();
 
     // overview
@@ -270,7 +310,7 @@ pub fn capacity_figures(plan: &Plan, courses: &[GroupCourse], floor: f64) -> Str
         .collect();
     let pos = spread(&ends, 13.0, py0 + 6.0, py0 + ph - 2.0);
     let lx0 = px0 + pw + 8.0;
-    for (i, c) in hi.iter().enumerate() {
+    for i in 0..hi.len() {
         let colour = COLOURS[i];
         g.line(
             px0 + pw,
@@ -289,7 +329,7 @@ pub fn capacity_figures(plan: &Plan, courses: &[GroupCourse], floor: f64) -> Str
         g.text(
             lx0 + 28.0,
             pos[i] + 3.5,
-            &short(name(c.h), 32),
+            &short(name(i), 40),
             &format!("font-size=\"10.5\" fill=\"{colour}\" font-weight=\"600\""),
         );
     }
@@ -346,7 +386,7 @@ pub fn capacity_figures(plan: &Plan, courses: &[GroupCourse], floor: f64) -> Str
         g.text(
             ox + 6.0,
             oy + 12.0,
-            &short(name(c.h), 38),
+            &short(name(i), 40),
             &format!("font-size=\"10.5\" font-weight=\"600\" fill=\"{colour}\""),
         );
         let sub = format!(

@@ -189,6 +189,7 @@ pub fn findings(
                     .map(exhaustion_html)
                     .unwrap_or_default(),
             ),
+            WorstWhy::Hazard => (Level::Bad, esc(&super::analysis::hazards(a, p).join("; "))),
             WorstWhy::Limiting(h) => {
                 let f = st.loads.get(h).copied().unwrap_or(f64::NAN);
                 let share = super::analysis::params(plan)
@@ -232,7 +233,7 @@ pub fn findings(
                         .unwrap_or(f64::NAN))
                 ),
             ),
-            WorstWhy::Load => (
+            WorstWhy::Load | WorstWhy::Compared => (
                 Level::Info,
                 format!(
                     "the highest load: the {} at {} of their strength",
@@ -240,6 +241,13 @@ pub fn findings(
                     pct(st.max_load)
                 ),
             ),
+        };
+        // every criterion that makes it the worst, not only the first
+        let also = super::analysis::hazards(a, p);
+        let why_text = if why == WorstWhy::Hazard || also.is_empty() {
+            why_text
+        } else {
+            format!("{why_text}; also {}", esc(&also.join("; ")))
         };
         f.push(
             Finding::new(

@@ -25,7 +25,7 @@ pub fn worker_line(task: &Task) -> String {
     format!(
         "{}, {} tall, {}, strength percentile {}",
         w.sex.name(),
-        unit(w.stature_m, 2, "m"),
+        unit(w.stature_m, 3, "m"),
         unit(w.mass_kg, 0, "kg"),
         num(w.strength_percentile, 0)
     )
@@ -121,8 +121,25 @@ fn worker_and_task(task: &Task, plan: &Plan, a: &Assessment) -> String {
     let mut o = String::from("<div class=\"two\"><div><h3>Worker</h3>");
     o.push_str(&kv_table(&[
         ("sex", esc(w.sex.name())),
-        ("stature", unit(w.stature_m, 3, "m")),
-        ("body mass", unit(w.mass_kg, 1, "kg")),
+        (
+            "stature",
+            format!(
+                "{} (percentile {} of the worker’s sex)",
+                unit(w.stature_m, 3, "m"),
+                num(
+                    crate::study::sweep::stature_percentile(w.sex, w.stature_m),
+                    0
+                )
+            ),
+        ),
+        (
+            "body mass",
+            format!(
+                "{} (percentile {})",
+                unit(w.mass_kg, 1, "kg"),
+                num(crate::study::sweep::mass_percentile(w.sex, w.mass_kg), 0)
+            ),
+        ),
         (
             "strength percentile",
             format!("{} (of the worker’s sex)", num(w.strength_percentile, 0)),
@@ -663,6 +680,10 @@ fn rest_section(plan: &Plan, a: &Assessment) -> String {
                 }
             ),
         ),
+        (
+            "which to use",
+            "the fatigue model's figure: it replays every cycle of the task, so fatigue that accumulates from cycle to cycle is counted; Rohmert's allowance sizes the rest after one hold from a rested muscle and does not accumulate, which is why it is far smaller".into(),
+        ),
     ]));
     o
 }
@@ -751,8 +772,8 @@ fn uncertainty_section(plan: &Plan, task: &Task, a: &Assessment) -> String {
         "uncertainty",
         &[
             "parameter variant",
-            "exhausted within the task?",
-            "time to exhaustion at this pace",
+            "exhausted within the task (as planned)?",
+            "the final postures held from the start: time to exhaustion",
             "lowest capacity at any time",
             "rest needed per cycle",
         ],
@@ -760,9 +781,14 @@ fn uncertainty_section(plan: &Plan, task: &Task, a: &Assessment) -> String {
     .numeric(&[2, 3, 4]);
     let _ = plan;
     for o in &u.outcomes {
+        let early = o
+            .minutes_to_exhaustion
+            .is_some_and(|m| 60.0 * m <= task.duration_s());
         t.row(
             Some(if o.exhausted_in_task {
                 Level::Bad
+            } else if early {
+                Level::Warn
             } else {
                 Level::Ok
             }),
@@ -774,6 +800,12 @@ fn uncertainty_section(plan: &Plan, task: &Task, a: &Assessment) -> String {
                     "no".into()
                 },
                 match o.minutes_to_exhaustion {
+                    Some(m) if 60.0 * m <= task.duration_s() && !o.exhausted_in_task => {
+                        format!(
+                            "{} (shorter than the task: the plan lasts only by changing posture)",
+                            dur(60.0 * m)
+                        )
+                    }
                     Some(m) if 60.0 * m <= task.duration_s() => {
                         format!("{} (within the task)", dur(60.0 * m))
                     }
@@ -785,8 +817,10 @@ fn uncertainty_section(plan: &Plan, task: &Task, a: &Assessment) -> String {
                     pct(o.lowest_capacity),
                     esc(&o.lowest_capacity_group)
                 ),
-                o.rest_needed_s
-                    .map_or_else(|| "rest cannot help".into(), dur),
+                o.rest_needed_s.map_or_else(
+                    || "no rest up to 10× the work time keeps every group above the floor".into(),
+                    dur,
+                ),
             ],
         );
     }
@@ -933,7 +967,7 @@ pub fn body(task: &Task, plan: &Plan, a: &Assessment) -> Result<String, ReportEr
     let n = task.phases.len().min(plan.summary.phases.len());
     let strain = phase_strain(task, plan);
     let courses = group_courses(task, plan, &strain);
-    let worst = worst_phase(task, plan, &strain);
+    let worst = worst_phase(task, plan, a, &strain);
     let scenes: Vec<Scene> = (0..n)
         .map(|p| body_view::scene(task, &plan.summary.phases[p].q_rad, Some(p)))
         .collect::<Result<_, _>>()?;

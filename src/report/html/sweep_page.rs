@@ -7,8 +7,23 @@ use crate::body::Sex;
 use crate::study::sweep::{Problem, Share, Sweep, WorkerOutcome, problem_text};
 use std::fmt::Write;
 
-fn verdict(w: &WorkerOutcome) -> (Level, String) {
+fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
     if w.can_do && w.problems.is_empty() {
+        if w.lowest_capacity < floor || w.rest_needed_s.is_none() {
+            return (
+                Level::Warn,
+                format!(
+                    "can do it only by changing posture as the muscles tire: capacity falls to {} (floor {}){}",
+                    pct(w.lowest_capacity),
+                    pct(floor),
+                    if w.rest_needed_s.is_none() {
+                        "; no rest up to 10× the work time keeps it above the floor"
+                    } else {
+                        ""
+                    }
+                ),
+            );
+        }
         match w.minutes_to_exhaustion {
             Some(m) => (
                 Level::Warn,
@@ -377,7 +392,13 @@ pub fn body(s: &Sweep) -> String {
     )
     .numeric(&[2, 6]);
     for w in &s.workers {
-        let (lv, v) = verdict(w);
+        let (lv, v) = verdict(w, s.capacity_floor);
+        // a load above strength from the first instant: nothing was held, no figures
+        let did_not_start = w
+            .problems
+            .iter()
+            .any(|p| matches!(p, Problem::ExceedsStrength { .. }))
+            && w.simulated_s <= 0.0;
         t.row(
             Some(lv),
             vec![
@@ -390,11 +411,15 @@ pub fn body(s: &Sweep) -> String {
                 ),
                 num(w.worker.strength_percentile, 0),
                 v,
-                format!(
-                    "{} ({})",
-                    pct(w.lowest_capacity),
-                    esc(&w.lowest_capacity_group)
-                ),
+                if did_not_start {
+                    "— (did not start)".into()
+                } else {
+                    format!(
+                        "{} ({})",
+                        pct(w.lowest_capacity),
+                        esc(&w.lowest_capacity_group)
+                    )
+                },
                 format!(
                     "{} / {}",
                     opt(w.rula_max, |x| x.to_string()),
@@ -402,11 +427,15 @@ pub fn body(s: &Sweep) -> String {
                 ),
                 opt(w.back_compression_max_n, |x| unit(x, 0, "N")),
                 w.rest_needed_s
-                    .map_or_else(|| "rest cannot help".into(), dur),
+                    .map_or_else(|| "none up to 10× the work time".into(), dur),
                 opt(w.exhausted_in_variants, |x| {
                     format!("{x} of {}", crate::assess::uncertainty::VARIANTS.len())
                 }),
-                format!("{} ({})", unit(w.total_u_min, 1, "min"), dur(w.simulated_s)),
+                if did_not_start {
+                    "— (did not start)".into()
+                } else {
+                    format!("{} ({})", unit(w.total_u_min, 1, "min"), dur(w.simulated_s))
+                },
             ],
         );
     }

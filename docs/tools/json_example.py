@@ -1,0 +1,40 @@
+#!/usr/bin/env python3
+"""Abridge a posture-opt JSON document for the README: every key is kept, every array is cut to
+its first element followed by a string "... (N more)", numbers are rounded to 4 significant
+digits, arrays of plain values are written on one line. The result is valid JSON with the same
+key structure as the document.
+
+    posture-opt plan tasks/pallet.yaml --json | python3 docs/tools/json_example.py > example.json
+"""
+import json
+import sys
+
+
+def abridge(v, keep=1):
+    if isinstance(v, dict):
+        return {k: abridge(x, keep) for k, x in v.items()}
+    if isinstance(v, list):
+        head = [abridge(x, keep) for x in v[:keep]]
+        if len(v) > keep:
+            head.append(f"... ({len(v) - keep} more)")
+        return head
+    if isinstance(v, float):
+        return float(f"{v:.4g}")
+    return v
+
+
+def dump(v, indent=0):
+    pad = " " * indent
+    if isinstance(v, dict):
+        if not v:
+            return "{}"
+        items = [f'{pad} {json.dumps(k, ensure_ascii=False)}: {dump(x, indent + 1)}' for k, x in v.items()]
+        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+    if isinstance(v, list) and any(isinstance(x, (dict, list)) for x in v):
+        items = [pad + " " + dump(x, indent + 1) for x in v]
+        return "[\n" + ",\n".join(items) + "\n" + pad + "]"
+    return json.dumps(v, ensure_ascii=False)
+
+
+if __name__ == "__main__":
+    print(dump(abridge(json.load(sys.stdin))))
