@@ -17,7 +17,7 @@ use posture_opt::plan::task::{MAX_HAND_FORCE_N, MAX_LOAD_KG};
 use posture_opt::plan::{PlanError, PlanOptions, Task, TaskError, TaskFile, plan_task_with};
 use posture_opt::record::evaluator::{DEGREES_SUSPECT_RAD, RANGE_TOLERANCE_RAD};
 use posture_opt::record::opensim::Mapping;
-use posture_opt::record::run::{HOLD_RULE, RunError, TIMELINE_POINTS, Timeline};
+use posture_opt::record::run::{HOLD_RULE, RunError, Timeline};
 use posture_opt::record::{self, Evaluation, Evaluator, Input, Sample};
 use posture_opt::report::PlanDocument;
 use posture_opt::study::compare::{self as cmp, CompareShard};
@@ -717,7 +717,7 @@ impl Run {
             ev.check_range(&s.q_rad)
                 .map_err(|(k, v)| format!("{where_}: q[{k}] = {v} looks like degrees"))?;
             let new = ev.push(&s).map_err(|e| format!("{where_}: {e}"))?;
-            timeline_push(timeline, i, t_s, ev);
+            timeline.push(i, t_s, ev);
             Ok::<usize, String>(new)
         })?;
         self.last_t_s = Some(t_s);
@@ -727,83 +727,17 @@ impl Run {
 
     /// The `evaluate --json` document of the samples so far.
     fn document(&self) -> Result<Evaluation, String> {
-        let task = self.task();
-        let ev = self.ev();
         if self.pushed == 0 {
             return Err(format!("{}: no samples", self.source));
         }
-        let ids = task.half_joint_ids();
-        let nh = ids.len();
-        let final_c: Vec<f64> = ev.state.iter().map(|s| s.capacity).collect();
-        let final_u: Vec<f64> = ev.state.iter().map(|s| s.fatigue_u_min).collect();
-        let worst = (0..nh)
-            .max_by(|&a, &b| final_u[a].total_cmp(&final_u[b]))
-            .unwrap_or(0);
-        let (t0, t1) = ev.span_s();
-        let group = |h: usize| {
-            task.half_joints
-                .get(h)
-                .map(|x| x.group.clone())
-                .unwrap_or_default()
-        };
-        Ok(Evaluation {
-            source: self.source.clone(),
-            robot: task.robot.clone(),
-            worker: task.worker,
-            fatigue_parameters: task.fatigue_choice.set.clone(),
-            hold_rule: HOLD_RULE,
-            standing: ev.standing,
-            groups: task.half_joints.iter().map(|h| h.group.clone()).collect(),
-            half_joint_ids: ids,
-            samples: self.pushed,
-            duration_s: t1 - t0,
-            total_u_min: final_u.iter().sum(),
-            worst_group: group(worst),
-            worst_u_min: final_u.get(worst).copied().unwrap_or(0.0),
-            final_capacity: final_c,
-            final_fatigue_u_min: final_u,
-            lowest_capacity: ev.lowest.0,
-            lowest_capacity_group: group(ev.lowest.1),
-            lowest_capacity_t_s: ev.lowest.2,
-            exhaustions: ev.events.clone(),
-            samples_outside_range: ev.outside_range,
-            timeline: self.timeline.clone(),
-        })
+        Ok(Evaluation::new(
+            &self.source,
+            self.task(),
+            self.ev(),
+            self.pushed,
+            self.timeline.clone(),
+        ))
     }
-}
-
-/// The timeline of `evaluate`: every `stride`-th sample, at most [`TIMELINE_POINTS`] kept (every
-/// other point dropped and the stride doubled when full), as `record::run` keeps it.
-fn timeline_push(tl: &mut Timeline, i: u64, t: f64, ev: &Evaluator) {
-    if tl.stride == 0 {
-        tl.stride = 1;
-    }
-    if i % tl.stride != 0 {
-        return;
-    }
-    if tl.t_s.len() >= TIMELINE_POINTS {
-        fn halve<T>(v: &mut Vec<T>) {
-            let mut k = 0;
-            v.retain(|_| {
-                k += 1;
-                k % 2 == 1
-            });
-        }
-        halve(&mut tl.t_s);
-        halve(&mut tl.capacity);
-        halve(&mut tl.fatigue_u_min);
-        halve(&mut tl.load);
-        tl.stride *= 2;
-        if i % tl.stride != 0 {
-            return;
-        }
-    }
-    tl.t_s.push(t);
-    tl.capacity
-        .push(ev.state.iter().map(|s| s.capacity).collect());
-    tl.fatigue_u_min
-        .push(ev.state.iter().map(|s| s.fatigue_u_min).collect());
-    tl.load.push(ev.loads.clone());
 }
 
 /// Evaluates samples given as arrays (float64 bytes: `t` n, `q` n×nq row-major, `force` n×2×3

@@ -223,7 +223,8 @@ pub struct Timeline {
 }
 
 impl Timeline {
-    fn push(&mut self, i: u64, t: f64, ev: &Evaluator) {
+    /// Records sample `i` (at `t` s) of `ev` when it falls on the stride.
+    pub fn push(&mut self, i: u64, t: f64, ev: &Evaluator) {
         if self.stride == 0 {
             self.stride = 1;
         }
@@ -364,42 +365,55 @@ pub fn evaluate<R: BufRead>(
     if i == 0 {
         return Err(sample_err(&r, "no samples after the header".into()));
     }
-    let nh = ids.len();
-    let final_c: Vec<f64> = ev.state.iter().map(|s| s.capacity).collect();
-    let final_u: Vec<f64> = ev.state.iter().map(|s| s.fatigue_u_min).collect();
-    let worst = (0..nh)
-        .max_by(|&a, &b| final_u[a].total_cmp(&final_u[b]))
-        .unwrap_or(0);
-    let (t0, t1) = ev.span_s();
-    let group = |h: usize| {
-        task.half_joints
-            .get(h)
-            .map(|x| x.group.clone())
-            .unwrap_or_default()
-    };
-    Ok(Evaluation {
-        source: r.name().to_string(),
-        robot: task.robot.clone(),
-        worker: task.worker,
-        fatigue_parameters: task.fatigue_choice.set.clone(),
-        hold_rule: HOLD_RULE,
-        standing: ev.standing,
-        groups: task.half_joints.iter().map(|h| h.group.clone()).collect(),
-        half_joint_ids: ids,
-        samples: i,
-        duration_s: t1 - t0,
-        total_u_min: final_u.iter().sum(),
-        worst_group: group(worst),
-        worst_u_min: final_u.get(worst).copied().unwrap_or(0.0),
-        final_capacity: final_c,
-        final_fatigue_u_min: final_u,
-        lowest_capacity: ev.lowest.0,
-        lowest_capacity_group: group(ev.lowest.1),
-        lowest_capacity_t_s: ev.lowest.2,
-        exhaustions: ev.events.clone(),
-        samples_outside_range: ev.outside_range,
-        timeline,
-    })
+    Ok(Evaluation::new(r.name(), task, &ev, i, timeline))
+}
+
+impl Evaluation {
+    /// The document of `samples` samples evaluated by `ev` for `task`, read from `source`.
+    pub fn new(
+        source: &str,
+        task: &Task,
+        ev: &Evaluator,
+        samples: u64,
+        timeline: Timeline,
+    ) -> Evaluation {
+        let ids = task.half_joint_ids();
+        let final_c: Vec<f64> = ev.state.iter().map(|s| s.capacity).collect();
+        let final_u: Vec<f64> = ev.state.iter().map(|s| s.fatigue_u_min).collect();
+        let worst = (0..ids.len())
+            .max_by(|&a, &b| final_u[a].total_cmp(&final_u[b]))
+            .unwrap_or(0);
+        let (t0, t1) = ev.span_s();
+        let group = |h: usize| {
+            task.half_joints
+                .get(h)
+                .map(|x| x.group.clone())
+                .unwrap_or_default()
+        };
+        Evaluation {
+            source: source.to_string(),
+            robot: task.robot.clone(),
+            worker: task.worker,
+            fatigue_parameters: task.fatigue_choice.set.clone(),
+            hold_rule: HOLD_RULE,
+            standing: ev.standing,
+            groups: task.half_joints.iter().map(|h| h.group.clone()).collect(),
+            half_joint_ids: ids,
+            samples,
+            duration_s: t1 - t0,
+            total_u_min: final_u.iter().sum(),
+            worst_group: group(worst),
+            worst_u_min: final_u.get(worst).copied().unwrap_or(0.0),
+            final_capacity: final_c,
+            final_fatigue_u_min: final_u,
+            lowest_capacity: ev.lowest.0,
+            lowest_capacity_group: group(ev.lowest.1),
+            lowest_capacity_t_s: ev.lowest.2,
+            exhaustions: ev.events.clone(),
+            samples_outside_range: ev.outside_range,
+            timeline,
+        }
+    }
 }
 
 /// One line of live output (`evaluate --stream`).
