@@ -16,7 +16,118 @@ use std::fmt::Write as _;
 /// The JSON Schema of task files (what `posture-opt schema` prints and `docs/task.schema.json`
 /// holds).
 pub fn task_schema() -> serde_json::Value {
-    serde_json::to_value(schema_for!(crate::plan::task::TaskFile)).expect("a schema is plain JSON")
+    let mut v = serde_json::to_value(schema_for!(crate::plan::task::TaskFile))
+        .expect("a schema is plain JSON");
+    add_bounds(&mut v);
+    // a phase gives exactly one of a hand target, targets per hand, or an object
+    if let Some(Value::Object(phase)) = v.pointer_mut("/$defs/PhaseFile") {
+        phase.insert(
+            "oneOf".into(),
+            serde_json::json!([
+                {"required": ["target_m"]},
+                {"required": ["targets"]},
+                {"required": ["object"]}
+            ]),
+        );
+    }
+    v
+}
+
+/// Writes the numeric range a field's description states (`1.2..2.3`, `> 0`, `1 or more`, `at
+/// most 10`) into the schema as `minimum`, `maximum` or `exclusiveMinimum` (on the items of a
+/// list of numbers), so that editors check ranges too. Descriptions with several ranges are left
+/// to posture-opt's own checks.
+fn add_bounds(v: &mut Value) {
+    match v {
+        Value::Object(m) => {
+            if let Some(Value::Object(props)) = m.get_mut("properties") {
+                for p in props.values_mut() {
+                    bound_field(p);
+                }
+            }
+            for x in m.values_mut() {
+                add_bounds(x);
+            }
+        }
+        Value::Array(a) => a.iter_mut().for_each(add_bounds),
+        _ => {}
+    }
+}
+
+fn bound_field(p: &mut Value) {
+    let Some(text) = p.get("description").and_then(Value::as_str) else {
+        return;
+    };
+    let Some(range) = range_in_text(text) else {
+        return;
+    };
+    // several ranges, or one on a derived quantity (a vector's magnitude in g), are left to
+    // posture-opt's own checks
+    if range.contains(';') || text.contains("Magnitude") {
+        return;
+    }
+    let num = |s: &str| -> Option<f64> {
+        let t: String = s
+            .trim()
+            .replace('−', "-")
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '.' || *c == '-' || *c == 'e')
+            .collect();
+        t.parse().ok()
+    };
+    let mut bounds = Map::new();
+    if let Some((a, b)) = range.split_once(" to ") {
+        if let (Some(a), Some(b)) = (num(a), num(b)) {
+            bounds.insert("minimum".into(), a.into());
+            bounds.insert("maximum".into(), b.into());
+        }
+    } else if let Some(a) = range.strip_prefix("> ") {
+        if let Some(a) = num(a) {
+            bounds.insert("exclusiveMinimum".into(), a.into());
+        }
+    } else if let Some(a) = range.strip_prefix("≥ ") {
+        if let Some(a) = num(a) {
+            bounds.insert("minimum".into(), a.into());
+        }
+    } else if let Some(b) = range.strip_prefix("at most ")
+        && let Some(b) = num(b)
+    {
+        bounds.insert("maximum".into(), b.into());
+    }
+    if bounds.is_empty() {
+        return;
+    }
+    let is_number = |v: &Value| {
+        let t = |x: &Value| matches!(x.as_str(), Some("number" | "integer"));
+        match v.get("type") {
+            Some(Value::Array(ts)) => ts.iter().any(t),
+            Some(x) => t(x),
+            None => false,
+        }
+    };
+    let target = if is_number(p) {
+        Some(p)
+    } else if p.get("items").is_some_and(is_number) {
+        p.get_mut("items")
+    } else {
+        None
+    };
+    if let Some(Value::Object(m)) = target {
+        // the tighter of the type's own bound (an unsigned integer's 0) and the description's
+        for (k, b) in bounds {
+            let new = b.as_f64().unwrap_or(f64::NAN);
+            let keep = m.get(&k).and_then(Value::as_f64).is_some_and(|old| {
+                if k == "maximum" {
+                    old <= new
+                } else {
+                    old >= new
+                }
+            });
+            if !keep {
+                m.insert(k, b);
+            }
+        }
+    }
 }
 
 /// The task file reference as Markdown, rendered from [`task_schema`] (what
@@ -257,6 +368,21 @@ impl<'a> Renderer<'a> {
             for (_, _, need) in rows.iter_mut() {
                 if need.is_empty() {
                     *need = format!("one of {}", one_of_names.join(", "));
+                }
+            }
+            // variants that only require one of the listed fields (a phase's target, targets or
+            // object): exactly one of them
+            let only: Vec<&str> = variants
+                .iter()
+                .filter(|v| v.get("properties").is_none())
+                .filter_map(|v| v.get("required")?.as_array()?.first()?.as_str())
+                .collect();
+            if !only.is_empty() {
+                let names: Vec<String> = only.iter().map(|k| format!("`{k}`")).collect();
+                for (k, _, need) in rows.iter_mut() {
+                    if only.contains(&k.as_str()) {
+                        *need = format!("exactly one of {}", names.join(", "));
+                    }
                 }
             }
         }
@@ -708,6 +834,25 @@ mod tests {
             Some("≥ 1")
         );
         assert_eq!(range_in_text("A short title for reports."), None);
+        // the ranges reach the schema as bounds editors check
+        let v = task_schema();
+        let w = &v["$defs"]["Worker"]["properties"]["stature_m"];
+        assert_eq!(
+            (w["minimum"].as_f64(), w["maximum"].as_f64()),
+            (Some(1.2), Some(2.3))
+        );
+        assert_eq!(v["properties"]["cycles"]["minimum"].as_f64(), Some(1.0));
+        let d = &v["$defs"]["PhaseFile"]["properties"]["duration_s"];
+        assert_eq!(d["exclusiveMinimum"].as_f64(), Some(0.0));
+        assert!(
+            v["properties"]["gravity_m_s2"]["items"]
+                .get("maximum")
+                .is_none()
+        );
+        assert_eq!(
+            v["$defs"]["PhaseFile"]["oneOf"].as_array().map(Vec::len),
+            Some(3)
+        );
         assert_eq!(
             default_in_text("Share on the left hand, 0..1; default 0.5.").as_deref(),
             Some("0.5")

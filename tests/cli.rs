@@ -501,3 +501,25 @@ fn readme_json_example_has_the_keys_of_a_real_run() {
         "README example lacks {missing:?}; has keys the program no longer writes: {extra:?}"
     );
 }
+
+/// The shipped schema and its Markdown reference are what `posture-opt schema` prints today.
+#[test]
+fn shipped_schema_docs_are_current() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (code, out, _) = run(&["schema"]);
+    assert_eq!(code, 0);
+    let shipped = std::fs::read_to_string(root.join("docs/task.schema.json")).unwrap();
+    let a: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let b: serde_json::Value = serde_json::from_str(&shipped).unwrap();
+    assert!(
+        a == b,
+        "docs/task.schema.json is stale: run posture-opt schema > docs/task.schema.json"
+    );
+    let (code, out, _) = run(&["schema", "--markdown"]);
+    assert_eq!(code, 0);
+    let md = std::fs::read_to_string(root.join("docs/task-format.md")).unwrap();
+    assert!(
+        out.trim() == md.trim(),
+        "docs/task-format.md is stale: run posture-opt schema --markdown > docs/task-format.md"
+    );
+}
