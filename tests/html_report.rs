@@ -207,7 +207,7 @@ fn sweep_html() -> &'static str {
             outcome(3, "#003", Sex::Male, 1.87, vec![]),
         ];
         let s = Sweep::from_outcomes(NASTY, "sampled (n = 4, seed 1)", true, true, 0.7, workers);
-        sweep_report(&s).unwrap()
+        sweep_report(&s, None).unwrap()
     })
 }
 

@@ -135,7 +135,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     );
     let mut out = Outputs::new(&inputs);
     out.add("--report", &a.assess.report, || {
-        Ok(posture_opt::report::html::sweep_report(&s)
+        Ok(posture_opt::report::html::sweep_report(&s, Some(&task))
             .map_err(lib_err)?
             .into_bytes())
     })?;

@@ -2,7 +2,7 @@
 //! how robust the ranking is to the muscle parameters, and each layout's hardest phase drawn.
 
 use super::ReportError;
-use super::analysis::{WorstWhy, phase_strain, worst_phase};
+use super::analysis::{WorstWhy, group_courses, phase_strain, worst_phase};
 use super::body_view::{self, Scene, View};
 use super::findings::q;
 use super::fmt::{
@@ -390,6 +390,15 @@ fn card(
             &format!("#{} {}", o.rank, name),
         ));
     }
+    // what an ergonomist hands on with each layout: its phases and the model's parameters
+    let strain = phase_strain(task, &p.plan);
+    let courses = group_courses(task, &p.plan, &strain);
+    let _ = write!(
+        s,
+        "<details open><summary>Phases of one cycle</summary>{}</details><details><summary>The fatigue model's parameters per muscle group, with sources</summary>{}</details>",
+        super::plan_page::phase_table(task, Some(&p.assessment)),
+        super::plan_page::parameters_section(&p.plan, &courses)
+    );
     s.push_str("</div>");
     s
 }

@@ -64,9 +64,11 @@ pub fn compare_report(
 }
 
 /// The report of a population sweep: who cannot do the task, and why.
-pub fn sweep_report(s: &Sweep) -> Result<String, ReportError> {
+/// `task`: the swept task (its phases and fatigue parameters are shown; each worker's body is
+/// generated from the worker).
+pub fn sweep_report(s: &Sweep, task: Option<&crate::plan::Task>) -> Result<String, ReportError> {
     Ok(document(
         &format!("Population sweep: {}", s.task),
-        &sweep_page::body(s),
+        &sweep_page::body(s, task),
     ))
 }

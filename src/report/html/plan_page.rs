@@ -207,7 +207,8 @@ fn worker_and_task(task: &Task, plan: &Plan, a: &Assessment) -> String {
 }
 
 /// The phases of one cycle.
-fn phase_table(task: &Task, a: &Assessment) -> String {
+/// The phases of one cycle (`a`: the plan's assessment, for the hand heights reached).
+pub(super) fn phase_table(task: &Task, a: Option<&Assessment>) -> String {
     let mut t = Table::new(
         "phases",
         &[
@@ -224,7 +225,9 @@ fn phase_table(task: &Task, a: &Assessment) -> String {
     .numeric(&[0, 5, 6]);
     for (p, ph) in task.phases.iter().enumerate() {
         let zt = target_height(task, p);
-        let reached = a.phases.get(p).and_then(|x| x.hand_height_m);
+        let reached = a
+            .and_then(|a| a.phases.get(p))
+            .and_then(|x| x.hand_height_m);
         let height = match reached {
             Some(z) if (z - zt).abs() > 0.01 => {
                 format!("{} (hands reach {})", unit(zt, 2, "m"), unit(z, 2, "m"))
@@ -849,7 +852,19 @@ fn recovery_text(r: &Recovery) -> String {
     }
 }
 
-fn parameters_section(plan: &Plan, courses: &[GroupCourse]) -> String {
+/// The fatigue parameter set of a task, with its sources.
+pub(super) fn parameter_set_table(fp: &crate::plan::task::FatigueChoice) -> String {
+    kv_table(&[
+        (
+            "parameter set",
+            format!("<b>{}</b> — {}", esc(&fp.set), esc(&fp.description)),
+        ),
+        ("fatigue rate k", esc(&fp.k_source)),
+        ("recovery", esc(&fp.recovery_source)),
+    ])
+}
+
+pub(super) fn parameters_section(plan: &Plan, courses: &[GroupCourse]) -> String {
     let fp = &plan.fatigue_parameters;
     let mut o = kv_table(&[
         (
@@ -1016,7 +1031,7 @@ pub fn body(task: &Task, plan: &Plan, a: &Assessment) -> Result<String, ReportEr
     o.push_str("<section><h2>Worker and task</h2>");
     o.push_str(&worker_and_task(task, plan, a));
     o.push_str("<h3>Phases of one cycle</h3>");
-    o.push_str(&phase_table(task, a));
+    o.push_str(&phase_table(task, Some(a)));
     o.push_str("</section>");
 
     o.push_str("<section class=\"major\"><h2>Capacity over time</h2>");

@@ -219,7 +219,7 @@ fn scatter_svg(workers: &[WorkerOutcome]) -> String {
 }
 
 /// The sweep report's body.
-pub fn body(s: &Sweep) -> String {
+pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
     let n = s.workers.len();
     let mut o = String::new();
     let _ = write!(
@@ -446,5 +446,13 @@ pub fn body(s: &Sweep) -> String {
         esc(&s.note)
     );
     o.push_str("</section>");
+    if let Some(t) = task {
+        let _ = write!(
+            o,
+            "<section><h2>The task</h2><h3>Phases of one cycle</h3>{}<h3>Fatigue parameters</h3>{}<p class=\"meta\">k per muscle group follows its body region (and the worker's sex where the set gives it); every worker's strength comes from the population tables at their sex and strength percentile.</p></section>",
+            super::plan_page::phase_table(t, None),
+            super::plan_page::parameter_set_table(&t.fatigue_choice)
+        );
+    }
     o
 }
