@@ -68,6 +68,11 @@ pub struct FatigueCost<'t> {
     state: Vec<MaState>,
     cycles: u64,
     scratch: Vec<HeldStep<Dual2>>,
+    /// Per half-joint, the last load it was evaluated at (its bits) with its total and the
+    /// capacity bound there: a group's load often stays exactly where it was between calls (0
+    /// for the unloaded direction of every joint), and the totals are deterministic.
+    total_cache: Vec<Option<(u64, Dual2, f64)>>,
+    bound_cache: Vec<Option<(u64, (f64, f64))>>,
 }
 
 impl<'t> FatigueCost<'t> {
@@ -106,6 +111,8 @@ impl<'t> FatigueCost<'t> {
             state: state.to_vec(),
             cycles,
             scratch: Vec::with_capacity(task.phases.len() + 1),
+            total_cache: vec![None; nh],
+            bound_cache: vec![None; nh],
         }
     }
 
@@ -114,6 +121,21 @@ impl<'t> FatigueCost<'t> {
         for (h, v) in self.step_loads.iter_mut().enumerate() {
             v[p] = f[h];
         }
+        self.total_cache.iter_mut().for_each(|c| *c = None);
+        self.bound_cache.iter_mut().for_each(|c| *c = None);
+    }
+
+    /// [`Self::total`] at load `f` with its derivatives, from the cache when `f` is unchanged.
+    fn cached_total(&mut self, h: usize, f: f64) -> (Dual2, f64) {
+        let bits = f.to_bits();
+        if let Some((b, u, s)) = self.total_cache[h]
+            && b == bits
+        {
+            return (u, s);
+        }
+        let (u, s) = self.total(h, Dual2::variable(f));
+        self.total_cache[h] = Some((bits, u, s));
+        (u, s)
     }
 
     /// Total U at the end \[min\] of half-joint `h` if it holds `f` in the group's phases, as
@@ -201,6 +223,11 @@ fn log_sum(terms: &[(f64, f64)], weights: &mut [f64]) -> f64 {
 
 impl LoadCost for FatigueCost<'_> {
     fn capacity_bound(&mut self, h: usize, f: f64) -> Option<(f64, f64)> {
+        if let Some((b, r)) = self.bound_cache[h]
+            && b == f.to_bits()
+        {
+            return Some(r);
+        }
         self.scratch.clear();
         for (s, &t_min) in self.step_t_min.iter().enumerate() {
             let load = if self.in_group[s] {
@@ -221,7 +248,9 @@ impl LoadCost for FatigueCost<'_> {
             self.state[h].capacity,
             self.cycles,
         );
-        Some((c.v - EXHAUSTION_MARGIN, c.d))
+        let r = (c.v - EXHAUSTION_MARGIN, c.d);
+        self.bound_cache[h] = Some((f.to_bits(), r));
+        Some(r)
     }
 
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64 {
@@ -229,7 +258,7 @@ impl LoadCost for FatigueCost<'_> {
         let mut terms = Vec::with_capacity(n);
         let mut derivs = Vec::with_capacity(n);
         for h in 0..n {
-            let (u, s) = self.total(h, Dual2::variable(f[h]));
+            let (u, s) = self.cached_total(h, f[h]);
             terms.push((u.v, s));
             derivs.push((u.d, u.dd));
         }
@@ -246,14 +275,7 @@ impl LoadCost for FatigueCost<'_> {
         let n = f.len();
         let terms: Vec<(f64, f64)> = (0..n)
             .map(|h| {
-                let (u, s) = self.total(
-                    h,
-                    Dual2 {
-                        v: f[h],
-                        d: 0.0,
-                        dd: 0.0,
-                    },
-                );
+                let (u, s) = self.cached_total(h, f[h]);
                 (u.v, s)
             })
             .collect();
