@@ -843,7 +843,7 @@ mod tests {
         );
         assert_eq!(v["properties"]["cycles"]["minimum"].as_f64(), Some(1.0));
         let d = &v["$defs"]["PhaseFile"]["properties"]["duration_s"];
-        assert_eq!(d["exclusiveMinimum"].as_f64(), Some(0.0));
+        assert_eq!(d["minimum"].as_f64(), Some(0.001));
         assert!(
             v["properties"]["gravity_m_s2"]["items"]
                 .get("maximum")

@@ -523,3 +523,75 @@ fn shipped_schema_docs_are_current() {
         "docs/task-format.md is stale: run posture-opt schema --markdown > docs/task-format.md"
     );
 }
+
+/// Round two of the hostile corpus (the cases a review found after the first round): each is
+/// refused with exit 2 naming what is wrong, or answered without a panic.
+#[test]
+fn hostile_round_two_is_refused_with_the_field_named() {
+    // a load too small for the closed forms, and a curve too large to write
+    let (code, _, err) = run(&["met", "--fmvc", "5e-324"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--fmvc") && err.contains("smallest load"),
+        "{err}"
+    );
+    let (code, _, err) = run(&["met", "--fmvc", "0.01:1:0.0001", "--points", "100000"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("curve points"), "{err}");
+    // an error message with standard error unwritable: exit 2, no panic
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let st = std::process::Command::new(common::bin())
+        .args(["plan", "/nonexistent.yaml"])
+        .stderr(full)
+        .status()
+        .unwrap();
+    assert_eq!(st.code(), Some(2));
+    let dir = tempfile::tempdir().unwrap();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    // a phase held for 1e-300 s
+    let task = std::fs::read_to_string(root.join("tests/data/hostile/quick.yaml")).unwrap();
+    let re = with_tiny_duration(&task);
+    let tiny = dir.path().join("tiny.yaml");
+    std::fs::write(&tiny, re).unwrap();
+    let (code, _, err) = run(&["plan", tiny.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("duration_s") && err.contains("1 ms"), "{err}");
+    // recordings: times of 1e300 s, angles of 1e300 rad
+    let rec = dir.path().join("far.csv");
+    std::fs::write(&rec, "t_s,r_elbow_flexion\n0,0.1\n1e300,0.2\n").unwrap();
+    let (code, _, err) = run(&["evaluate", rec.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("line 3") && err.contains("time beyond"),
+        "{err}"
+    );
+    std::fs::write(&rec, "t_s,r_elbow_flexion\n0,0.1\n1,1e300\n").unwrap();
+    let (code, _, err) = run(&["evaluate", rec.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("r_elbow_flexion") && err.contains("beyond"),
+        "{err}"
+    );
+    // an OpenSim mapping that maps nothing
+    let map = dir.path().join("empty.yaml");
+    std::fs::write(&map, "joints: []\n").unwrap();
+    let mot = root.join("tests/data/opensim/rajagopal_small.mot");
+    let (code, _, err) = run(&[
+        "evaluate",
+        mot.to_str().unwrap(),
+        "--mapping",
+        map.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("no joints"), "{err}");
+}
+
+/// The quick hostile task with its first phase held for 1e-300 s.
+fn with_tiny_duration(task: &str) -> String {
+    let i = task.find("duration_s:").expect("a phase duration");
+    let end = i + task[i..].find([',', '}', '\n']).unwrap();
+    format!("{}duration_s: 1e-300{}", &task[..i], &task[end..])
+}

@@ -435,6 +435,12 @@ fn compare_shards_merge_into_the_unsharded_comparison() {
     }
     // Merging needs every shard exactly once, and shard results.
     cli(d, &["compare", "--merge", "shard1.json"]).bad(&["missing"]);
+    // a shard claiming an absurd total is refused, not allocated for
+    let mut huge: Value =
+        serde_json::from_slice(&std::fs::read(d.join("shard1.json")).unwrap()).unwrap();
+    huge["layouts_total"] = Value::from(1u64 << 60);
+    write(d, "huge.json", serde_json::to_vec(&huge).unwrap());
+    cli(d, &["compare", "--merge", "huge.json"]).bad(&["cover", "of 1152921504606846976"]);
     cli(
         d,
         &[

@@ -219,7 +219,7 @@ fn values_are_refused_with_the_field_and_the_value() {
     refused(
         "neg.yaml",
         &BASE.replace("duration_s: 5.0", "duration_s: -5.0"),
-        &[&format!("{phase}.duration_s"), "> 0", "got -5"],
+        &[&format!("{phase}.duration_s"), "at least 1 ms", "got -5"],
     );
     refused(
         "zero.yaml",
@@ -531,6 +531,13 @@ fn the_nearest_posture_keeps_the_feet_and_the_balance() {
             (ph.hand_error_m - miss).abs() < 1e-6,
             "{} vs {miss}",
             ph.hand_error_m
+        );
+        // and the verdict says so, not "the task can be done"
+        let m = posture_opt::assess::meaning::meaning(&t, &p);
+        assert!(
+            m.words.starts_with("cannot be done as planned") && m.words.contains("out of reach"),
+            "{}",
+            m.words
         );
     }
 }

@@ -1381,3 +1381,29 @@ fn absurd_workers_are_refused() {
         );
     }
 }
+
+/// A strength-table entry naming a joint the robot lacks, or a region the fatigue parameters do
+/// not know, is refused with the entry named — it used to be ignored in silence (the joint then
+/// fell back to its URDF effort, once 60 % stronger).
+#[test]
+fn misspelt_strength_entries_are_refused() {
+    let w = Worker::MALE_50;
+    let m = generate(&w);
+    let table = posture_opt::body::strength::DEFAULT_TABLE_YAML;
+    for (from, to, expect) in [
+        (
+            "joint: lumbar_flexion",
+            "joint: lumbar_flexon",
+            "'lumbar_flexon' is not a moving joint",
+        ),
+        ("region: trunk", "region: spleen", "region 'spleen'"),
+    ] {
+        assert!(table.contains(from), "{from}");
+        let text = table.replacen(from, to, 1);
+        let t = StrengthTable::from_yaml_str(&text, "bad.strength.yaml").unwrap();
+        let e = resolve_half_joints(&m, &t, &w, "bad.strength.yaml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bad.strength.yaml") && e.contains(expect), "{e}");
+    }
+}

@@ -28,6 +28,9 @@ pub struct Meaning {
     /// Lowest capacity at the end of the task, and whose.
     pub capacity_left: f64,
     pub capacity_left_group: String,
+    /// What makes the plan impossible as planned (targets out of reach, collisions, loss of
+    /// balance); empty when nothing does.
+    pub problems: Vec<String>,
     /// A verdict in plain words.
     pub words: String,
 }
@@ -70,6 +73,7 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
     let mut exhausted: Option<(f64, usize)> = None;
     let max_cycles = ((7.0 * 86400.0) / task.cycle_s()).ceil().min(2e6) as usize;
     let mut last = vec![1.0; nh];
+    let mut settled_reached = false;
     'outer: for _ in 0..max_cycles {
         for (s, d) in durations.iter().enumerate() {
             if *d <= 0.0 {
@@ -93,6 +97,7 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
             .zip(&last)
             .all(|(s, c)| (s.capacity - c).abs() < 1e-12);
         if settled {
+            settled_reached = true;
             break;
         }
         last = state.iter().map(|s| s.capacity).collect();
@@ -116,7 +121,11 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         .map(|(h, c)| (*c, h))
         .fold((1.0, 0), |a, b| if b.0 < a.0 { b } else { a });
     let group = |h: usize| task.half_joints[h].group.clone();
+    let problems = plan.problems();
     let words = match exhausted {
+        _ if !problems.is_empty() => {
+            format!("cannot be done as planned: {}", problems.join("; "))
+        }
         // the plan as executed (re-planned as the muscles tire) lasts, but its final postures
         // held from the start would not: say both, the plan first
         Some((te, h)) if te <= task.duration_s() && replayed.exhaustion.is_none() => format!(
@@ -139,6 +148,13 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
             group(c_h),
             100.0 * c_left
         ),
+        // very short cycles: the replay stopped at its cycle cap before the capacities settled
+        None if !settled_reached => format!(
+            "no muscle group gave out in the {:.1} h followed at this pace (the capacities had not settled yet: longer was not simulated); at the end of the task the {} keep {:.0} % of their strength",
+            t / 3600.0,
+            group(c_h),
+            100.0 * c_left
+        ),
         None => format!(
             "this pace can be kept up indefinitely: every muscle group settles above its loads; at the end the {} keep {:.0} % of their strength",
             group(c_h),
@@ -153,6 +169,7 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         endurance_phase: task.phases[sh_p].name.clone(),
         capacity_left: c_left,
         capacity_left_group: group(c_h),
+        problems,
         words,
     }
 }

@@ -458,6 +458,10 @@ impl HalfJoint {
     }
 }
 
+/// Smallest URDF `<limit effort>` taken as a strength \[N·m or N\] (a weaker "muscle" would
+/// give relative loads of astronomical size).
+pub const MIN_EFFORT_NM: f64 = 1e-3;
+
 /// Resolves the two half-joints of every actuated moving joint of `model` for worker `w`: from
 /// the table where it has an entry, else from the URDF `<limit effort>` (said so in `source`).
 /// An actuated moving joint with neither is an error; so is an unactuated joint the model lacks.
@@ -474,6 +478,44 @@ pub fn resolve_half_joints(
                 joint: j.clone(),
                 problem: "is listed as unactuated but is not a moving joint of the robot".into(),
             });
+        }
+    }
+    // every entry must name a moving joint of the robot (on each side it lists) and a known
+    // body region: a misspelt entry would otherwise be ignored in silence
+    for (index, e) in table.half_joints.iter().enumerate() {
+        let entry_err = |problem: String| StrengthError::Entry {
+            path: origin.into(),
+            index,
+            joint: e.joint.clone(),
+            dir: e.direction.symbol(),
+            problem,
+        };
+        let names: Vec<String> = match &e.sides {
+            Some(sides) => sides
+                .iter()
+                .map(|s| format!("{}{}", s.prefix(), e.joint))
+                .collect(),
+            None => vec![e.joint.clone()],
+        };
+        for n in &names {
+            if model.q_index(n).is_err() {
+                let joints = (0..model.nq()).map(|k| model.q_joint(k).name.as_str());
+                return Err(entry_err(format!(
+                    "'{n}' is not a moving joint of the robot{}",
+                    crate::schema::did_you_mean(n, joints)
+                )));
+            }
+        }
+        if !crate::fatigue::fit::REGIONS.contains(&e.region.as_str()) {
+            return Err(entry_err(format!(
+                "region '{}' is not one of {}{}",
+                e.region,
+                crate::fatigue::fit::REGIONS.join(", "),
+                crate::schema::did_you_mean(
+                    &e.region,
+                    crate::fatigue::fit::REGIONS.iter().copied()
+                )
+            )));
         }
     }
     let mut out = Vec::with_capacity(2 * model.nq());
@@ -526,7 +568,7 @@ pub fn resolve_half_joints(
                         source: e.source.clone(),
                     }
                 }
-                None if j.effort > 0.0 => HalfJoint {
+                None if j.effort >= MIN_EFFORT_NM => HalfJoint {
                     id,
                     joint: j.name.clone(),
                     q_index: q,
@@ -559,8 +601,15 @@ pub fn resolve_half_joints(
                     return Err(StrengthError::Joint {
                         path: origin.into(),
                         joint: format!("{}{}", j.name, dir.symbol()),
-                        problem: "no strength-table entry and no URDF <limit effort> > 0 (list it under `unactuated` if it has no muscles)".into(),
-                    })
+                        problem: if j.effort > 0.0 {
+                            format!(
+                                "no strength-table entry, and its URDF <limit effort> {:e} is below {MIN_EFFORT_NM:e} N·m, too small for a muscle's strength",
+                                j.effort
+                            )
+                        } else {
+                            "no strength-table entry and no URDF <limit effort> > 0 (list it under `unactuated` if it has no muscles)".into()
+                        },
+                    });
                 }
             };
             out.push(hj);

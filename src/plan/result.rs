@@ -188,7 +188,56 @@ pub struct Plan {
     pub summary: Summary,
 }
 
+impl PhaseSummary {
+    /// What makes this phase impossible as planned, in words: a target out of reach or inside an
+    /// obstacle, a collision (body or held object), a loss of balance.
+    pub fn problems(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        if !self.reachable {
+            v.push(match &self.target_inside {
+                Some(o) => format!("'{}': the target lies inside '{o}'", self.phase),
+                None => format!(
+                    "'{}': the target is out of reach by {:.0} mm (feet in place, balance kept)",
+                    self.phase,
+                    1000.0 * self.hand_error_m
+                ),
+            });
+        }
+        if self.min_clearance_m < 0.0 {
+            v.push(format!(
+                "'{}': collision, {:.0} mm deep ({})",
+                self.phase,
+                -1000.0 * self.min_clearance_m,
+                self.closest.as_deref().unwrap_or("an obstacle")
+            ));
+        }
+        if let Some(m) = self.balance_margin_m.filter(|m| *m < 0.0) {
+            v.push(format!(
+                "'{}': off balance, the centre of pressure {:.0} mm outside the feet",
+                self.phase,
+                -1000.0 * m
+            ));
+        }
+        v
+    }
+}
+
 impl Plan {
+    /// Everything that makes the plan impossible as planned, in words (empty: none): every
+    /// phase's problems and a rest posture that collides.
+    pub fn problems(&self) -> Vec<String> {
+        let s = &self.summary;
+        let mut v: Vec<String> = s.phases.iter().flat_map(PhaseSummary::problems).collect();
+        if s.rest_clearance_m < 0.0 {
+            v.push(format!(
+                "rest posture: collision, {:.0} mm deep ({})",
+                -1000.0 * s.rest_clearance_m,
+                s.rest_closest.as_deref().unwrap_or("an obstacle")
+            ));
+        }
+        v
+    }
+
     /// Index of a half-joint by id.
     pub fn half_joint(&self, id: &str) -> Option<usize> {
         self.half_joint_ids.iter().position(|h| h == id)

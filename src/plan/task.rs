@@ -22,6 +22,9 @@ use std::path::{Path, PathBuf};
 
 /// Longest task accepted \[s\] (a year).
 pub const MAX_DURATION_S: f64 = 365.0 * 24.0 * 3600.0;
+
+/// Shortest hold (and rest, when there is one) of a phase \[s\]: a millisecond.
+pub const MIN_DURATION_S: f64 = 1e-3;
 /// Heaviest load accepted \[kg\] (a tonne).
 pub const MAX_LOAD_KG: f64 = 1000.0;
 /// Largest hand force component accepted \[N\].
@@ -205,7 +208,7 @@ pub struct PhaseFile {
     /// Share of a two-handed load on the left hand, 0..1; default 0.5.
     #[serde(default)]
     pub left_share: Option<f64>,
-    /// How long the posture is held \[s\], > 0.
+    /// How long the posture is held \[s\], 0.001..31536000 (a millisecond to a year).
     pub duration_s: f64,
 }
 
@@ -724,10 +727,12 @@ impl Task {
         if f.cycles == 0 {
             return Err(field("cycles", "must be at least 1".into()));
         }
-        if !(f.rest_s.is_finite() && (0.0..=MAX_DURATION_S).contains(&f.rest_s)) {
+        if !(f.rest_s.is_finite()
+            && (f.rest_s == 0.0 || (MIN_DURATION_S..=MAX_DURATION_S).contains(&f.rest_s)))
+        {
             return Err(field(
                 "rest_s",
-                format!("must be within 0 s and a year, got {}", f.rest_s),
+                format!("must be 0 or within 1 ms and a year, got {} s", f.rest_s),
             ));
         }
         let steps = f.cycles as u64 * (phases.len() as u64 + u64::from(f.rest_s > 0.0));
@@ -869,10 +874,16 @@ fn check_phase(
     field: &FieldErr,
 ) -> Result<Phase, TaskError> {
     let at = |name: &str| format!("phases[{i}] ({}).{name}", ph.name);
-    if !(ph.duration_s.is_finite() && ph.duration_s > 0.0 && ph.duration_s <= MAX_DURATION_S) {
+    if !(ph.duration_s.is_finite()
+        && ph.duration_s >= MIN_DURATION_S
+        && ph.duration_s <= MAX_DURATION_S)
+    {
         return Err(field(
             &at("duration_s"),
-            format!("must be > 0 s and at most a year, got {}", ph.duration_s),
+            format!(
+                "must be at least 1 ms and at most a year, got {} s",
+                ph.duration_s
+            ),
         ));
     }
     let given = [

@@ -26,6 +26,12 @@ pub const RANGE_TOLERANCE_RAD: f64 = 0.1;
 /// recording is refused with the hint `--degrees`.
 pub const DEGREES_SUSPECT_RAD: f64 = 0.5;
 
+/// Largest |time| of a sample \[s\] (about 32 years).
+pub const MAX_TIME_S: f64 = 1e9;
+
+/// Largest |joint value| of a sample (rad, or m for a prismatic joint).
+pub const MAX_JOINT_VALUE: f64 = 1000.0;
+
 /// The evaluation state: the task's body, worker and fatigue parameters, a statics workspace and
 /// every half-joint's fatigue state.
 pub struct Evaluator<'t> {
@@ -114,6 +120,35 @@ impl<'t> Evaluator<'t> {
                 .any(|f| !f.iter().all(|v| v.is_finite()))
         {
             return Err(EvalError::NotFinite { t_s: s.t_s });
+        }
+        // values without physical meaning: a recording longer than a year, times beyond ±10⁹ s,
+        // joint values beyond ±1000 rad (or m)
+        let implausible = |problem: String| EvalError::Implausible {
+            t_s: s.t_s,
+            problem,
+        };
+        if s.t_s.abs() > MAX_TIME_S {
+            return Err(implausible(format!(
+                "time beyond ±{MAX_TIME_S:e} s; give seconds from the recording's start"
+            )));
+        }
+        if let Some(t0) = self.first_t_s
+            && s.t_s - t0 > crate::plan::task::MAX_DURATION_S
+        {
+            return Err(implausible(
+                "the recording spans more than a year".to_string(),
+            ));
+        }
+        if let Some((k, v)) = s
+            .q_rad
+            .iter()
+            .enumerate()
+            .find(|(_, v)| v.abs() > MAX_JOINT_VALUE)
+        {
+            return Err(implausible(format!(
+                "{} = {v:e} is beyond ±{MAX_JOINT_VALUE} (rad or m)",
+                self.task.model.q_joint(k).name
+            )));
         }
         let before = self.events.len();
         if let Some(t0) = self.last_t_s {

@@ -80,6 +80,8 @@ pub enum EvalError {
     Length { expected: usize, got: usize },
     #[error("sample at t = {t_s}: every value must be finite")]
     NotFinite { t_s: f64 },
+    #[error("sample at t = {t_s} s: {problem}")]
+    Implausible { t_s: f64, problem: String },
 }
 
 /// The task that sets up an evaluation without a task file: the generated whole-body worker

@@ -1323,6 +1323,12 @@ impl Mapping {
             }
         })?;
 
+        if raw.joints.is_empty() && raw.rotation_groups.is_empty() {
+            return Err(invalid(
+                1,
+                "the mapping lists no joints and no rotation groups: nothing of the recording would be read; map at least one coordinate to a joint".into(),
+            ));
+        }
         let mut joints = Vec::with_capacity(raw.joints.len());
         for s in &raw.joints {
             let e = &s.value;

@@ -82,7 +82,9 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
     let _ = writeln!(o);
     match &s.exhaustion {
         Some(e) => {
-            let _ = writeln!(o, "VERDICT: cannot be done as planned: {}", e.describe());
+            let mut why = vec![e.describe()];
+            why.extend(a.meaning.problems.iter().cloned());
+            let _ = writeln!(o, "VERDICT: cannot be done as planned: {}", why.join("; "));
         }
         None => {
             let _ = writeln!(o, "VERDICT: {}", a.meaning.words);

@@ -520,6 +520,16 @@ pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError
             missing: Vec::new(),
         });
     };
+    // the shards must hold every layout: a claimed total beyond what they hold is refused
+    // before anything is allocated for it
+    let held: usize = shards.iter().map(|(_, s)| s.outcomes.len()).sum();
+    if first.layouts_total > held {
+        return Err(MergeError::Missing {
+            got: held,
+            total: first.layouts_total,
+            missing: Vec::new(),
+        });
+    }
     let mut seen = vec![false; first.layouts_total];
     let mut outcomes = Vec::new();
     for (name, s) in shards {

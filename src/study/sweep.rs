@@ -488,6 +488,19 @@ pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
     let Some((_, first)) = shards.first() else {
         return Err(bad("(none)", "no shard results given".into()));
     };
+    // the shards must hold every worker: a claimed total beyond what they hold is refused
+    // before anything is allocated for it
+    let held: usize = shards.iter().map(|(_, s)| s.workers.len()).sum();
+    if first.workers_total > held {
+        return Err(bad(
+            shards.first().map_or("(none)", |s| s.0.as_str()),
+            format!(
+                "missing {} workers: the shards hold {held} of the {} they claim",
+                first.workers_total - held,
+                first.workers_total
+            ),
+        ));
+    }
     let mut seen = vec![false; first.workers_total];
     let mut workers = Vec::new();
     for (name, s) in shards {

@@ -35,6 +35,13 @@ pub fn lib_err(e: impl std::fmt::Display) -> anyhow::Error {
     bad(e.to_string())
 }
 
+/// Writes a line to standard error; an unwritable standard error (a closed pipe, a full disk)
+/// is ignored rather than a panic, as `eprintln!` would.
+pub fn say(msg: std::fmt::Arguments) {
+    let mut e = std::io::stderr().lock();
+    let _ = e.write_fmt(msg).and_then(|_| e.write_all(b"\n"));
+}
+
 /// Maps a result to the exit code, printing the error.
 pub fn exit(r: anyhow::Result<()>) -> ExitCode {
     match r {
@@ -42,7 +49,7 @@ pub fn exit(r: anyhow::Result<()>) -> ExitCode {
         Err(e) if e.downcast_ref::<ClosedOutput>().is_some() => ExitCode::SUCCESS,
         Err(e) => {
             let bad_input = e.chain().any(|c| c.downcast_ref::<BadInput>().is_some());
-            eprintln!("error: {e}");
+            say(format_args!("error: {e}"));
             if bad_input {
                 ExitCode::from(2)
             } else {

@@ -27,6 +27,12 @@ pub struct Args {
     json: bool,
 }
 
+/// Smallest relative load `met` answers for.
+const MIN_FMVC: f64 = 1e-6;
+
+/// Most curve points `met` writes in one run (levels × points).
+const MAX_CURVE_POINTS: usize = 1_000_000;
+
 fn parse_fmvc(s: &str) -> anyhow::Result<Vec<f64>> {
     let num = |t: &str| -> anyhow::Result<f64> {
         t.trim()
@@ -57,6 +63,12 @@ fn parse_fmvc(s: &str) -> anyhow::Result<Vec<f64>> {
         }
     };
     for &f in &values {
+        // below 1e-6 of MVC the MET of Eq. 8 exceeds what a double holds in minutes
+        if f.is_finite() && f > 0.0 && f < MIN_FMVC {
+            return Err(bad(format!(
+                "--fmvc: {f:e} is below the smallest load handled, {MIN_FMVC:e} (a millionth of MVC)"
+            )));
+        }
         if !(f.is_finite() && f > 0.0 && f <= 1.0) {
             return Err(lib_err(FatigueError::BadLoad {
                 what: "--fmvc",
@@ -83,6 +95,13 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         return Err(bad("--points must be between 1 and 100000"));
     }
     let levels = parse_fmvc(&a.fmvc)?;
+    if levels.len().saturating_mul(a.points) > MAX_CURVE_POINTS {
+        return Err(bad(format!(
+            "--fmvc and --points: {} levels × {} points is more than {MAX_CURVE_POINTS} curve points; use fewer levels or points",
+            levels.len(),
+            a.points
+        )));
+    }
     let report = posture_opt::fatigue::met_report(&p, &levels, a.points);
     if a.json {
         print_json(&report)

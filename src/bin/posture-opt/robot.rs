@@ -40,7 +40,11 @@ pub fn run(a: Args) -> anyhow::Result<()> {
                     .to_vec())
             })?;
             out.write()?;
-            eprintln!("wrote {} and {}", path.display(), sp.display());
+            crate::common::say(format_args!(
+                "wrote {} and {}",
+                path.display(),
+                sp.display()
+            ));
             Ok(())
         }
         None => stdout(urdf.as_bytes()),

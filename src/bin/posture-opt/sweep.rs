@@ -75,9 +75,9 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     if todo > 6 {
-        eprintln!(
+        crate::common::say(format_args!(
             "planning {todo} workers; each takes seconds to a minute (two plans run at a time per core pair)"
-        );
+        ));
     }
     let out_lock = Mutex::new(());
     let stream = a.stream;
@@ -104,10 +104,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     .map_err(|e| anyhow::anyhow!(e))?;
     bar.finish_and_clear();
     if todo > 6 {
-        eprintln!(
+        crate::common::say(format_args!(
             "planned {todo} workers in {:.0} s",
             started.elapsed().as_secs_f64()
-        );
+        ));
     }
     if stream {
         return Ok(());

@@ -53,7 +53,11 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             let v = static_validation(o.k_per_min);
             if let Some(dir) = &o.plot {
                 let files = plots::static_figures(&v, dir).map_err(lib_err)?;
-                eprintln!("wrote {} figures into {}", files.len(), dir.display());
+                crate::common::say(format_args!(
+                    "wrote {} figures into {}",
+                    files.len(),
+                    dir.display()
+                ));
             }
             if o.json {
                 print_json(&v)
@@ -66,7 +70,11 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             let v = dynamic_validation(o.k_per_min);
             if let Some(dir) = &o.plot {
                 let files = plots::dynamic_figures(&v, dir).map_err(lib_err)?;
-                eprintln!("wrote {} figures into {}", files.len(), dir.display());
+                crate::common::say(format_args!(
+                    "wrote {} figures into {}",
+                    files.len(),
+                    dir.display()
+                ));
             }
             if o.json {
                 print_json(&v)
