@@ -57,6 +57,17 @@ pub struct Obstacle {
     plane: Option<(Vector3<f64>, Vector3<f64>)>,
 }
 
+impl Clone for Obstacle {
+    fn clone(&self) -> Self {
+        Obstacle {
+            spec: self.spec.clone(),
+            pose: self.pose,
+            shape: self.shape.clone_dyn(),
+            plane: self.plane,
+        }
+    }
+}
+
 impl std::fmt::Debug for Obstacle {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Obstacle")
@@ -344,7 +355,7 @@ impl Obstacle {
 }
 
 /// All obstacles of a task.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct Workstation {
     pub obstacles: Vec<Obstacle>,
 }

@@ -675,3 +675,52 @@ cycles: 2
         }
     }
 }
+
+/// The report's "what would change it": the hardest phase's target moved toward elbow height
+/// (0.630 × stature) by at most 10 cm and the task planned again. Checked against the same change
+/// made by hand in the task file and planned here.
+#[test]
+fn what_if_moves_the_work_toward_elbow_height_and_replans() {
+    let low = BASE
+        .replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 0.70]")
+        .replace("cycles: 10", "cycles: 3");
+    let t = Task::from_yaml_str(&low, std::path::Path::new("low.yaml")).unwrap();
+    let opts = PlanOptions {
+        baselines: false,
+        ..Default::default()
+    };
+    let p = plan_task_with(&t, opts).unwrap();
+    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
+        .unwrap()
+        .expect("a target 0.41 m below elbow height is moved");
+    assert_eq!(w.phase, "hold");
+    assert!((w.elbow_height_m - 0.630 * 1.755).abs() < 1e-12);
+    assert!((w.dz_m - 0.10).abs() < 1e-12, "{}", w.dz_m);
+    // the same change by hand (0.70 + 0.10 is not 0.80 in binary: the two plans agree to the
+    // optimiser's tolerance, not bit for bit)
+    let moved = BASE
+        .replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 0.80]")
+        .replace("cycles: 10", "cycles: 3");
+    let t2 = Task::from_yaml_str(&moved, std::path::Path::new("moved.yaml")).unwrap();
+    let p2 = plan_task_with(&t2, opts).unwrap();
+    let per_hour = p2.summary.total_u / (p2.summary.duration_s / 3600.0);
+    assert!(
+        (w.after.u_per_hour_min - per_hour).abs() <= 1e-6 * per_hour.max(1.0),
+        "{} vs {per_hour}",
+        w.after.u_per_hour_min
+    );
+    assert!((w.after.lowest_capacity - p2.summary.lowest_capacity).abs() < 1e-6);
+    // a target already at elbow height is left alone
+    let at_elbow = BASE
+        .replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 1.11]")
+        .replace("cycles: 10", "cycles: 2");
+    let t3 = Task::from_yaml_str(&at_elbow, std::path::Path::new("elbow.yaml")).unwrap();
+    let p3 = plan_task_with(&t3, opts).unwrap();
+    let a3 = posture_opt::assess::assess(&t3, &p3, 0.7);
+    assert!(
+        posture_opt::study::what_if::what_if(&t3, &p3, &a3, opts, 0.7)
+            .unwrap()
+            .is_none()
+    );
+}

@@ -403,7 +403,7 @@ pub struct ObjectiveSettings {
 }
 
 /// A validated task.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Task {
     /// The file as written (e.g. to plan it again for another worker).
     pub source: TaskFile,

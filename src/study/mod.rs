@@ -4,3 +4,4 @@
 pub mod compare;
 pub mod shard;
 pub mod sweep;
+pub mod what_if;

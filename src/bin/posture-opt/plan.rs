@@ -43,8 +43,18 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         Ok(csv::plan_recording_csv(&plan))
     })?;
     out.add("--report", &a.assess.report, || {
+        // the report's "what would change it": the task planned again with the hardest phase
+        // moved toward elbow height
+        let what_if = posture_opt::study::what_if::what_if(
+            &task,
+            &plan,
+            &assessment,
+            a.assess.plan_options(),
+            a.assess.capacity_floor,
+        )
+        .map_err(|e| anyhow::anyhow!(e))?;
         Ok(
-            posture_opt::report::html::plan_report(&task, &plan, &assessment)
+            posture_opt::report::html::plan_report(&task, &plan, &assessment, what_if.as_ref())
                 .map_err(lib_err)?
                 .into_bytes(),
         )

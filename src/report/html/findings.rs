@@ -708,3 +708,63 @@ pub fn findings(
     }
     f
 }
+
+/// "What would change it", from the what-if plan the tool ran.
+pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
+    let b = &w.before;
+    let x = &w.after;
+    let way = if w.dz_m > 0.0 { "up" } else { "down" };
+    let change = |a: f64, b: f64| {
+        if a > 0.0 {
+            format!("{:+.0} %", 100.0 * (b / a - 1.0))
+        } else {
+            "from 0".into()
+        }
+    };
+    let mut parts = vec![format!(
+        "fatigue per hour {:.1} → {:.1} min/h ({})",
+        b.u_per_hour_min,
+        x.u_per_hour_min,
+        change(b.u_per_hour_min, x.u_per_hour_min)
+    )];
+    if let (Some(p), Some(q)) = (b.back_compression_max_n, x.back_compression_max_n) {
+        parts.push(format!("highest L5/S1 compression {p:.0} → {q:.0} N"));
+    }
+    parts.push(format!(
+        "lowest capacity {} → {}",
+        pct(b.lowest_capacity),
+        pct(x.lowest_capacity)
+    ));
+    parts.push(format!(
+        "women strong enough {} → {}",
+        pct(b.capable_women),
+        pct(x.capable_women)
+    ));
+    let head = format!(
+        "<b>What would change it</b> (the task planned again by posture-opt): placing the work of {} {} {way}, toward this worker’s elbow height ({}), ",
+        q(&w.phase),
+        mm(w.dz_m.abs()),
+        super::fmt::unit(w.elbow_height_m, 2, "m")
+    );
+    if !w.problems.is_empty() {
+        return Finding::new(
+            Level::Info,
+            format!(
+                "{head}cannot be done as planned: {}.",
+                esc(&w.problems.join("; "))
+            ),
+        );
+    }
+    Finding::new(
+        Level::Info,
+        format!(
+            "{head}changes {}{}.",
+            parts.join("; "),
+            if x.exhausted && !b.exhausted {
+                "; but a muscle group is then exhausted within the task"
+            } else {
+                ""
+            }
+        ),
+    )
+}

@@ -48,8 +48,15 @@ fn document(title: &str, body: &str) -> String {
 }
 
 /// The report of one plan and its assessment.
-pub fn plan_report(task: &Task, plan: &Plan, a: &Assessment) -> Result<String, ReportError> {
-    let body = plan_page::body(task, plan, a)?;
+/// `what_if`: a workstation change the tool planned ([`crate::study::what_if`]), reported as
+/// "what would change it".
+pub fn plan_report(
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    what_if: Option<&crate::study::what_if::WhatIf>,
+) -> Result<String, ReportError> {
+    let body = plan_page::body(task, plan, a, what_if)?;
     Ok(document(&format!("Plan: {}", plan.task), &body))
 }
 

@@ -978,7 +978,12 @@ fn optimiser_section(plan: &Plan) -> String {
 }
 
 /// The plan report's body (inside `<body>`).
-pub fn body(task: &Task, plan: &Plan, a: &Assessment) -> Result<String, ReportError> {
+pub fn body(
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    what_if: Option<&crate::study::what_if::WhatIf>,
+) -> Result<String, ReportError> {
     let n = task.phases.len().min(plan.summary.phases.len());
     let strain = phase_strain(task, plan);
     let courses = group_courses(task, plan, &strain);
@@ -1002,7 +1007,10 @@ pub fn body(task: &Task, plan: &Plan, a: &Assessment) -> Result<String, ReportEr
         env!("CARGO_PKG_VERSION")
     );
     let mut v = findings::verdict(task, plan, a);
-    let f: Vec<Finding> = findings::findings(task, plan, a, &strain, &courses, worst);
+    let mut f: Vec<Finding> = findings::findings(task, plan, a, &strain, &courses, worst);
+    if let Some(w) = what_if {
+        f.insert(1.min(f.len()), findings::what_if_finding(w));
+    }
     // a fatigue verdict that is fine does not hide the problems found otherwise
     let problems = f.iter().filter(|x| x.level == Level::Bad).count();
     if v.level != Level::Bad && problems > 0 {
