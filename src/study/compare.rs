@@ -511,6 +511,10 @@ pub enum MergeError {
     },
 }
 
+/// A merge whose shards claim more items than they hold by more than this is refused before
+/// the missing items are listed (a corrupt or hostile total would otherwise be allocated for).
+pub const MERGE_SLACK: usize = 1_000_000;
+
 /// Merges shard results (`names` name them in messages) into one comparison.
 pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError> {
     let Some((first_name, first)) = shards.first() else {
@@ -523,7 +527,7 @@ pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError
     // the shards must hold every layout: a claimed total beyond what they hold is refused
     // before anything is allocated for it
     let held: usize = shards.iter().map(|(_, s)| s.outcomes.len()).sum();
-    if first.layouts_total > held {
+    if first.layouts_total > held.saturating_add(MERGE_SLACK) {
         return Err(MergeError::Missing {
             got: held,
             total: first.layouts_total,

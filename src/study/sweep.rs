@@ -491,7 +491,7 @@ pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
     // the shards must hold every worker: a claimed total beyond what they hold is refused
     // before anything is allocated for it
     let held: usize = shards.iter().map(|(_, s)| s.workers.len()).sum();
-    if first.workers_total > held {
+    if first.workers_total > held.saturating_add(super::compare::MERGE_SLACK) {
         return Err(bad(
             shards.first().map_or("(none)", |s| s.0.as_str()),
             format!(
