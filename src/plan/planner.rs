@@ -782,9 +782,20 @@ pub fn object_overlap(t: &Task, ph: &super::task::Phase) -> Option<(f64, String)
         .min_by(|a, b| a.0.total_cmp(&b.0))
 }
 
+/// A link's name in words: "l_upper_arm" → "left upper arm" (the side prefixes of the
+/// generated worker; other names only lose their underscores).
+fn link_words(name: &str) -> String {
+    let (side, rest) = match (name.strip_prefix("r_"), name.strip_prefix("l_")) {
+        (Some(r), _) => ("right ", r),
+        (_, Some(r)) => ("left ", r),
+        _ => ("", name),
+    };
+    format!("{side}{}", rest.replace('_', " "))
+}
+
 /// "obstacle 'cart'" or "right forearm ↔ trunk".
 fn describe_contact(t: &Task, link: usize, other: &Other) -> String {
-    let name = |l: usize| t.model.links[l].name.clone();
+    let name = |l: usize| link_words(&t.model.links[l].name);
     match other {
         Other::Obstacle(i) => format!(
             "{} ↔ obstacle '{}'",
