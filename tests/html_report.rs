@@ -664,3 +664,32 @@ fn report_outputs_are_atomic() {
     assert!(err.contains("no/such/dir/report.html"), "{err}");
     assert!(!dir.path().join("no").exists());
 }
+
+/// A sweep report of a task carries the task's phases and its fatigue parameters per muscle
+/// group (the worker, the phases and the model's parameters, as a report handed on must).
+#[test]
+fn sweep_report_of_a_task_has_its_phases_and_parameters() {
+    let task = Task::from_file(std::path::Path::new(&format!(
+        "{}/tests/data/hostile/quick.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    )))
+    .unwrap();
+    let s = Sweep::from_outcomes(
+        "quick",
+        "standard (3 workers)",
+        false,
+        true,
+        0.7,
+        vec![outcome(0, "P50 man", Sex::Male, 1.755, vec![])],
+    );
+    let html = sweep_report(&s, Some(&task)).unwrap();
+    assert_sound(&html);
+    assert!(html.contains("Phases of one cycle"));
+    assert!(html.contains("<td>hold</td>"), "the phase named");
+    assert!(html.contains("k and recovery per muscle group"));
+    for h in &task.half_joints {
+        assert!(html.contains(&h.group), "{}", h.group);
+    }
+    let escaped = task.fatigue_choice.k_source.replace('&', "&amp;");
+    assert!(html.contains(&escaped), "the k source");
+}

@@ -50,6 +50,39 @@ fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
     }
 }
 
+/// k and recovery per muscle group for the task's own worker (every swept worker gets the
+/// same values, except where the set gives a region's k by sex).
+fn group_parameters(t: &crate::plan::Task) -> String {
+    let mut tab = Table::new(
+        "sweep-params",
+        &[
+            "muscle group",
+            "region",
+            "k",
+            "recovery at rest",
+            "held forever up to",
+        ],
+    )
+    .numeric(&[2, 3, 4]);
+    for (h, p) in t.half_joints.iter().zip(&t.fatigue) {
+        tab.row(
+            None,
+            vec![
+                esc(&h.group),
+                esc(&h.region),
+                format!("{}/min", num(p.k_per_min, 3)),
+                format!("{}/min", num(p.r_at(0.0), 3)),
+                pct(p.sustainable_load()),
+            ],
+        );
+    }
+    format!(
+        "<details><summary>k and recovery per muscle group (the task's worker, a {}; sources above)</summary>{}</details>",
+        esc(t.worker.sex.name()),
+        tab.render()
+    )
+}
+
 fn kind(p: &Problem) -> &'static str {
     match p {
         Problem::ExceedsStrength { .. } => "a load exceeds a group’s strength",
@@ -453,6 +486,7 @@ pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
             super::plan_page::phase_table(t, None),
             super::plan_page::parameter_set_table(&t.fatigue_choice)
         );
+        o.push_str(&group_parameters(t));
     }
     o
 }
