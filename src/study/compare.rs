@@ -139,37 +139,12 @@ pub fn outcome(
     a: &Assessment,
 ) -> LayoutOutcome {
     let s = &plan.summary;
-    let mut problems = Vec::new();
+    let problems = plan.problems();
     let mut min_clearance = f64::INFINITY;
     let mut closest = None;
     let mut min_margin: Option<f64> = None;
     for p in &s.phases {
-        if !p.reachable {
-            problems.push(match &p.target_inside {
-                Some(o) => format!("'{}': the target is inside '{o}'", p.phase),
-                None => format!(
-                    "'{}': out of reach by {:.0} mm",
-                    p.phase,
-                    1000.0 * p.hand_error_m
-                ),
-            });
-        }
-        if p.min_clearance_m < 0.0 {
-            problems.push(format!(
-                "'{}': {:.0} mm into {}",
-                p.phase,
-                -1000.0 * p.min_clearance_m,
-                p.closest.as_deref().unwrap_or("an obstacle")
-            ));
-        }
         if let Some(m) = p.balance_margin_m {
-            if m < 0.0 {
-                problems.push(format!(
-                    "'{}': off balance ({:.0} mm outside the feet)",
-                    p.phase,
-                    -1000.0 * m
-                ));
-            }
             min_margin = Some(min_margin.map_or(m, |x: f64| x.min(m)));
         }
         if p.min_clearance_m < min_clearance {
@@ -370,39 +345,25 @@ fn findings(layouts: &[LayoutOutcome], robustness: &[Robustness]) -> Vec<String>
 
 /// What choosing the best layout instead of `o` changes, in plain words and numbers.
 fn what_changes(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
-    let rel = |b: f64, a: f64| {
-        if a > 0.0 {
-            format!("{:+.0} %", 100.0 * (b / a - 1.0))
-        } else {
-            "from 0".into()
-        }
+    use super::what_if::{Figures, relative_change};
+    let figures = |x: &LayoutOutcome| Figures {
+        u_per_hour_min: x.u_per_hour_min,
+        lowest_capacity: x.lowest_capacity,
+        back_compression_max_n: x.back_compression_max_n,
+        capable_women: x.capable_women,
+        exhausted: x.exhaustion.is_some(),
     };
-    let mut parts = vec![format!(
-        "fatigue per hour {} ({:.1} → {:.1} min/h)",
-        rel(best.u_per_hour_min, o.u_per_hour_min),
-        o.u_per_hour_min,
-        best.u_per_hour_min
-    )];
+    let mut parts = figures(o).changes_to(&figures(best));
     if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
-        parts.push(format!(
-            "the {}' fatigue {}",
-            best.worst_group,
-            rel(best.worst_u_min, o.worst_u_min)
-        ));
+        parts.insert(
+            1,
+            format!(
+                "the {}' fatigue {}",
+                best.worst_group,
+                relative_change(o.worst_u_min, best.worst_u_min)
+            ),
+        );
     }
-    parts.push(format!(
-        "lowest capacity {:.0} % → {:.0} %",
-        100.0 * o.lowest_capacity,
-        100.0 * best.lowest_capacity
-    ));
-    if let (Some(a), Some(b)) = (o.back_compression_max_n, best.back_compression_max_n) {
-        parts.push(format!("highest L5/S1 compression {a:.0} → {b:.0} N"));
-    }
-    parts.push(format!(
-        "women strong enough {:.0} % → {:.0} %",
-        100.0 * o.capable_women,
-        100.0 * best.capable_women
-    ));
     format!("{} instead of {}: {}", best.file, o.file, parts.join("; "))
 }
 

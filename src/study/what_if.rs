@@ -33,6 +33,49 @@ pub struct Figures {
     pub exhausted: bool,
 }
 
+/// `+12 %` from `a` to `b` ("from 0" when `a` is not positive).
+pub fn relative_change(a: f64, b: f64) -> String {
+    if a > 0.0 {
+        let x = 100.0 * (b / a - 1.0);
+        if x.abs() < 1.0 {
+            format!("{x:+.1} %")
+        } else {
+            format!("{x:+.0} %")
+        }
+    } else {
+        "from 0".into()
+    }
+}
+
+impl Figures {
+    /// What changes from these figures to `after`, in words, one item per figure.
+    pub fn changes_to(&self, after: &Figures) -> Vec<String> {
+        let mut v = vec![format!(
+            "fatigue per hour {:.1} → {:.1} min/h ({})",
+            self.u_per_hour_min,
+            after.u_per_hour_min,
+            relative_change(self.u_per_hour_min, after.u_per_hour_min)
+        )];
+        if let (Some(a), Some(b)) = (self.back_compression_max_n, after.back_compression_max_n) {
+            v.push(format!("highest L5/S1 compression {a:.0} → {b:.0} N"));
+        }
+        v.push(format!(
+            "lowest capacity {:.0} % → {:.0} %",
+            100.0 * self.lowest_capacity,
+            100.0 * after.lowest_capacity
+        ));
+        v.push(format!(
+            "women strong enough {:.0} % → {:.0} %",
+            100.0 * self.capable_women,
+            100.0 * after.capable_women
+        ));
+        if after.exhausted && !self.exhausted {
+            v.push("but a muscle group is then exhausted within the task".into());
+        }
+        v
+    }
+}
+
 /// A workstation change and what it does.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WhatIf {
@@ -63,16 +106,14 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
 
 /// The phase a what-if moves (see the module documentation).
 pub fn phase_to_move(task: &Task, plan: &Plan, a: &Assessment) -> Option<usize> {
-    let limit = crate::assess::low_back::BackParams::default().compression_action_limit_n;
-    let compression = |p: usize| {
-        a.phases
-            .get(p)
-            .and_then(|x| x.low_back.as_ref())
-            .map_or(0.0, |b| b.compression_n)
-    };
+    use crate::assess::low_back::CompressionVerdict;
+    let back = |p: usize| a.phases.get(p).and_then(|x| x.low_back.as_ref());
+    let compression = |p: usize| back(p).map_or(0.0, |b| b.compression_n);
     let n = task.phases.len();
     if let Some(p) = (0..n)
-        .filter(|&p| compression(p) > limit)
+        .filter(|&p| {
+            back(p).is_some_and(|b| b.compression_verdict != CompressionVerdict::WithinActionLimit)
+        })
         .max_by(|&x, &y| compression(x).total_cmp(&compression(y)))
     {
         return Some(p);

@@ -11,6 +11,7 @@
 
 use super::dynamic::frey_law_avin_curve;
 use crate::body::Sex;
+use crate::fatigue::fit::{Measured, Row, predict};
 use crate::fatigue::params::ParameterSet;
 use crate::fatigue::three_compartment::Region;
 use crate::fatigue::{FatigueError, MaParams, MaState};
@@ -63,35 +64,17 @@ pub struct RecoveryValidation {
 
 const LOADS: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
 
-fn region_name(r: Region) -> &'static str {
-    match r {
-        Region::Ankle => "ankle",
-        Region::Knee => "knee",
-        Region::Trunk => "trunk",
-        Region::Shoulder => "shoulder",
-        Region::Elbow => "elbow",
-        Region::Grip => "grip",
-        Region::General => "general",
-    }
-}
-
-/// Endurance \[s\] of a fresh group working `on_s` at `f` and resting `off_s`, repeated, capped
-/// at 24 h.
+/// Endurance \[s\] of a fresh group working `on_s` at `f` and resting `off_s`, repeated (the
+/// simulation `fit` predicts with; capped at 24 h).
 fn intermittent_s(p: &MaParams, f: f64, on_s: f64, off_s: f64) -> f64 {
-    const CAP_S: f64 = 86_400.0;
-    let mut s = MaState::FRESH;
-    let mut t = 0.0;
-    while t < CAP_S {
-        if let Some(te) = p.time_to_exhaustion_s(s.capacity, f)
-            && te <= on_s
-        {
-            return t + te;
-        }
-        p.hold(&mut s, f, on_s);
-        p.hold(&mut s, 0.0, off_s);
-        t += on_s + off_s;
-    }
-    CAP_S
+    let row = Row {
+        line: 0,
+        region: "general".into(),
+        load_fmvc: f,
+        cycle_s: Some((on_s, off_s)),
+        what: Measured::EnduranceS(1.0),
+    };
+    predict(p, &row)
 }
 
 fn check(
@@ -143,7 +126,7 @@ pub fn recovery_validation(
     let params = |region: &str| set.params(region, Sex::Male);
     let mut endurance = Vec::new();
     for r in Region::ALL {
-        let name = region_name(r);
+        let name = r.name();
         let p = params(name)?;
         let (b0, b1) = frey_law_avin_curve(r).expect("every region has a curve");
         let model_over_curve = LOADS

@@ -196,17 +196,18 @@ pub fn hazards(a: &Assessment, p: usize) -> Vec<String> {
         return out;
     };
     if let Some(b) = &pa.low_back {
+        use crate::assess::low_back::CompressionVerdict as V;
         let limits = crate::assess::low_back::BackParams::default();
-        if b.compression_n > limits.compression_max_limit_n {
-            out.push(format!(
+        match b.compression_verdict {
+            V::AboveMaximumPermissibleLimit => out.push(format!(
                 "L5/S1 compression {:.0} N, above NIOSH's maximum permissible limit ({:.0} N)",
                 b.compression_n, limits.compression_max_limit_n
-            ));
-        } else if b.compression_n > limits.compression_action_limit_n {
-            out.push(format!(
+            )),
+            V::AboveActionLimit => out.push(format!(
                 "L5/S1 compression {:.0} N, above NIOSH's action limit ({:.0} N)",
                 b.compression_n, limits.compression_action_limit_n
-            ));
+            )),
+            V::WithinActionLimit => {}
         }
     }
     if pa.capable_women < DESIGN_CAPABLE_WOMEN {

@@ -22,33 +22,7 @@ pub fn q(name: &str) -> String {
 
 /// What makes a phase impossible, in words (escaped HTML); empty when nothing does.
 pub fn phase_problems(p: &PhaseSummary) -> Vec<String> {
-    let mut v = Vec::new();
-    if !p.reachable {
-        v.push(match &p.target_inside {
-            Some(o) => format!("{}: the target lies inside {}", q(&p.phase), q(o)),
-            None => format!(
-                "{}: the target is out of reach by {}",
-                q(&p.phase),
-                mm(p.hand_error_m)
-            ),
-        });
-    }
-    if p.min_clearance_m < 0.0 {
-        v.push(format!(
-            "{}: the body is {} into {}",
-            q(&p.phase),
-            mm(-p.min_clearance_m),
-            esc(p.closest.as_deref().unwrap_or("an obstacle"))
-        ));
-    }
-    if let Some(m) = p.balance_margin_m.filter(|m| *m < 0.0) {
-        v.push(format!(
-            "{}: off balance, the centre of pressure {} outside the feet",
-            q(&p.phase),
-            mm(-m)
-        ));
-    }
-    v
+    p.problems().iter().map(|x| esc(x)).collect()
 }
 
 /// An exhaustion in words (escaped HTML).
@@ -74,7 +48,8 @@ pub fn exhaustion_html(e: &Exhaustion) -> String {
 /// The verdict: can the worker do it, and for how long.
 pub fn verdict(task: &Task, plan: &Plan, a: &Assessment) -> Finding {
     let s = &plan.summary;
-    let problems: Vec<String> = s.phases.iter().flat_map(phase_problems).collect();
+    // the plan's problems (every phase's and the rest posture's), as the text verdict has them
+    let problems: Vec<String> = plan.problems().iter().map(|x| esc(x)).collect();
     let m = &a.meaning;
     let left = format!(
         "At the end {} of the {}’ strength is left; the lowest capacity at any time is {} ({}, at {}).",
@@ -711,60 +686,17 @@ pub fn findings(
 
 /// "What would change it", from the what-if plan the tool ran.
 pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
-    let b = &w.before;
-    let x = &w.after;
     let way = if w.dz_m > 0.0 { "up" } else { "down" };
-    let change = |a: f64, b: f64| {
-        if a > 0.0 {
-            format!("{:+.0} %", 100.0 * (b / a - 1.0))
-        } else {
-            "from 0".into()
-        }
-    };
-    let mut parts = vec![format!(
-        "fatigue per hour {:.1} → {:.1} min/h ({})",
-        b.u_per_hour_min,
-        x.u_per_hour_min,
-        change(b.u_per_hour_min, x.u_per_hour_min)
-    )];
-    if let (Some(p), Some(q)) = (b.back_compression_max_n, x.back_compression_max_n) {
-        parts.push(format!("highest L5/S1 compression {p:.0} → {q:.0} N"));
-    }
-    parts.push(format!(
-        "lowest capacity {} → {}",
-        pct(b.lowest_capacity),
-        pct(x.lowest_capacity)
-    ));
-    parts.push(format!(
-        "women strong enough {} → {}",
-        pct(b.capable_women),
-        pct(x.capable_women)
-    ));
     let head = format!(
         "<b>What would change it</b> (the task planned again by posture-opt): placing the work of {} {} {way}, toward this worker’s elbow height ({}), ",
         q(&w.phase),
         mm(w.dz_m.abs()),
         super::fmt::unit(w.elbow_height_m, 2, "m")
     );
-    if !w.problems.is_empty() {
-        return Finding::new(
-            Level::Info,
-            format!(
-                "{head}cannot be done as planned: {}.",
-                esc(&w.problems.join("; "))
-            ),
-        );
-    }
-    Finding::new(
-        Level::Info,
-        format!(
-            "{head}changes {}{}.",
-            parts.join("; "),
-            if x.exhausted && !b.exhausted {
-                "; but a muscle group is then exhausted within the task"
-            } else {
-                ""
-            }
-        ),
-    )
+    let text = if w.problems.is_empty() {
+        format!("changes {}", w.before.changes_to(&w.after).join("; "))
+    } else {
+        format!("cannot be done as planned: {}", w.problems.join("; "))
+    };
+    Finding::new(Level::Info, format!("{head}{}.", esc(&text)))
 }
