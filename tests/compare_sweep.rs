@@ -453,6 +453,51 @@ fn compare_shards_merge_into_the_unsharded_comparison() {
     )
     .bad(&["shard2.json"]);
     cli(d, &["compare", "--merge", "shard1.json", "easy.yaml"]).bad(&["easy.yaml"]);
+    // Shards merge only when they were made from the same files. Shard 2/2 (layout 1,
+    // high.yaml) run again after high.yaml's rest changed does not merge with shard 1/2; after a
+    // comment alone was added it does; after the robot file changed it does not.
+    let mut args = vec!["compare"];
+    args.extend(GIVEN);
+    args.extend(["--shard", "2/2", "--json"]);
+    let rerun = |name: &str| {
+        let v = json(d, &args);
+        write(d, name, serde_json::to_vec(&v).unwrap());
+    };
+    let high = layout("high.yaml", LAYOUTS[1].1);
+    write(d, "high.yaml", high.replace("rest_s: 5.0", "rest_s: 6.0"));
+    rerun("shard2_rest.json");
+    cli(
+        d,
+        &["compare", "--merge", "shard1.json", "shard2_rest.json"],
+    )
+    .bad(&[
+        "shard2_rest.json",
+        "other layout files than shard1.json",
+        "layout 1",
+    ]);
+    write(
+        d,
+        "high.yaml",
+        format!("# the same layout, commented\n{high}"),
+    );
+    rerun("shard2_comment.json");
+    json(
+        d,
+        &[
+            "compare",
+            "--merge",
+            "shard1.json",
+            "shard2_comment.json",
+            "--json",
+        ],
+    );
+    write(d, "arm.urdf", format!("{ARM_URDF}\n<!-- edited -->\n"));
+    rerun("shard2_robot.json");
+    cli(
+        d,
+        &["compare", "--merge", "shard1.json", "shard2_robot.json"],
+    )
+    .bad(&["shard2_robot.json", "other layout files"]);
 }
 
 #[test]
@@ -918,4 +963,36 @@ fn sweep_shards_merge_into_the_unsharded_sweep() {
         ],
     )
     .bad(&["sweep1.json"]);
+    // A shard planned --fatigue-only does not merge with one planned with the discomfort term,
+    // nor one whose task fingerprint differs (made from other files).
+    let mut args = vec!["sweep", "heavy.yaml", "--shard", "2/2", "--fatigue-only"];
+    args.extend(sample);
+    let v = json(d, &args);
+    assert_eq!(v["fatigue_only"], true);
+    write(d, "sweep2_fatigue.json", serde_json::to_vec(&v).unwrap());
+    cli(
+        d,
+        &["sweep", "--merge", "sweep1.json", "sweep2_fatigue.json"],
+    )
+    .bad(&["sweep2_fatigue.json", "fatigue-only"]);
+    let mut args = vec!["sweep", "heavy.yaml", "--shard", "2/2"];
+    args.extend(sample);
+    let mut v = json(d, &args);
+    assert_eq!(v["fatigue_only"], false);
+    // the same task planned again merges; a different fingerprint (another file) does not
+    write(d, "sweep2_again.json", serde_json::to_vec(&v).unwrap());
+    json(
+        d,
+        &[
+            "sweep",
+            "--merge",
+            "sweep1.json",
+            "sweep2_again.json",
+            "--json",
+        ],
+    );
+    v["task_fingerprint"] = Value::from("0".repeat(64));
+    write(d, "sweep2_other.json", serde_json::to_vec(&v).unwrap());
+    cli(d, &["sweep", "--merge", "sweep1.json", "sweep2_other.json"])
+        .bad(&["sweep2_other.json", "other files"]);
 }

@@ -685,8 +685,8 @@ fn held(steps: &[(f64, f64)]) -> Vec<HeldStep<f64>> {
 }
 
 /// The documented accuracy of the O(1) sum (module docs of `schedule`): exact chains, a
-/// second-order tail below 1e−9, or an Euler–Maclaurin tail whose first neglected term is below
-/// 1.2e−5 of the transient's scale.
+/// second-order tail below 1e−9, or (slow transients unsettled after 1024 exact cycles) an
+/// Euler–Maclaurin tail whose first neglected term is below 1.2e−5 of the transient's scale.
 const CYCLES_REL_TOL: f64 = 1.2e-5;
 
 /// The O(1) total and end capacity against N explicit holds.

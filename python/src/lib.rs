@@ -492,17 +492,17 @@ fn sweep(
         })?
         .map_err(sweep_err)?;
         if shard_given.is_some() {
-            return json(&SweepShard {
-                kind: swp::SHARD_KIND.into(),
-                shard: shard.to_string(),
-                task: file.name.clone(),
+            return json(&SweepShard::new(
+                &file,
+                &path,
+                shard,
                 population,
                 sampled,
-                adaptive: opts.adapt,
+                opts,
                 capacity_floor,
-                workers_total: members.len(),
+                members.len(),
                 workers,
-            });
+            ));
         }
         let s = Sweep::from_outcomes(
             &file.name,

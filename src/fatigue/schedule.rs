@@ -10,11 +10,11 @@
 //! * without recovery in any step, `u(c) = u(1)/c²` and `c_n = c_0 Aⁿ`, so the sum is the
 //!   geometric closed form `u(1)/c_0² · (e^{2NL} − 1)/(e^{2L} − 1)` with `L = −ln A`, kept in a
 //!   scaled form ([`ScaledU`]) so that paper-model shifts of any length never overflow;
-//! * when the transient dies fast (`L ≥ 0.2` per cycle), cycles are summed exactly until
-//!   `|c_n − c*| ≤ 10⁻³ c*`, and the rest in closed form from the second-order expansion of `u`
-//!   about `c*` (geometric sums of `δ` and `δ²`; the neglected third-order term is below 10⁻⁹
-//!   of the total);
-//! * when it dies slowly, four cycles are summed exactly and the rest by the Euler–Maclaurin
+//! * cycles are summed exactly until `|c_n − c*| ≤ 10⁻³ c*`, and the rest in closed form from
+//!   the second-order expansion of `u` about `c*` (geometric sums of `δ` and `δ²`; the neglected
+//!   third-order term is below 10⁻⁹ of the total);
+//! * when a slow transient (`L < 0.2` per cycle) has not settled after [`EXACT_CYCLES`] exact
+//!   cycles (a long task), the rest is summed by the Euler–Maclaurin
 //!   formula to its B₄ term: `Σ φ(j) = ∫φ + (φ(0) + φ(m−1))/2 + (φ'(m−1) − φ'(0))/12 −
 //!   (φ'''(m−1) − φ'''(0))/720`, with `φ(x) = u(c* + δ e^{−Lx})`; the integral becomes
 //!   `(1/L) ∫ u(c*+y) d ln|y|` over the transient's range, by 12-point Gauss–Legendre on panels
@@ -67,6 +67,11 @@ pub(crate) struct Prepared<T> {
 }
 
 const LT_SWITCH: f64 = 30.0;
+
+/// Cycles summed exactly before a transient that has not settled is summed by Euler–Maclaurin.
+/// The Euler–Maclaurin tail costs about a thousand cycle evaluations (its Gauss–Legendre panels),
+/// so fewer cycles than that are cheaper, and exact, summed one by one.
+pub const EXACT_CYCLES: u64 = 1024;
 
 #[inline]
 fn g_of_w<T: Real>(w: T) -> T {
@@ -273,11 +278,11 @@ pub fn repeated_cycles<T: Real>(
     let mut c = c0t;
     let mut u = zero;
     let mut n = 0u64;
-    let fast = big_l >= 0.2;
+    let slow = big_l < 0.2;
     while n < n_cycles {
         let delta = c.val() - c_star.val();
         let settled = delta.abs() <= 1e-3 * c_star.val();
-        if settled || (!fast && n >= 4) {
+        if settled || (slow && n >= EXACT_CYCLES) {
             let m = n_cycles - n;
             let tail = if settled {
                 taylor_tail(&cycle, c_star, c - c_star, a_map, ln_a, m)

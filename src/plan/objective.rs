@@ -68,10 +68,14 @@ pub struct FatigueCost<'t> {
     state: Vec<MaState>,
     cycles: u64,
     scratch: Vec<HeldStep<Dual2>>,
+    scratch_value: Vec<HeldStep<f64>>,
     /// Per half-joint, the last load it was evaluated at (its bits) with its total and the
     /// capacity bound there: a group's load often stays exactly where it was between calls (0
     /// for the unloaded direction of every joint), and the totals are deterministic.
     total_cache: Vec<Option<(u64, Dual2, f64)>>,
+    /// The same for the value alone (the line search needs no derivatives; plain numbers cost
+    /// about a third of [`Dual2`]s).
+    value_cache: Vec<Option<(u64, f64, f64)>>,
     bound_cache: Vec<Option<(u64, (f64, f64))>>,
 }
 
@@ -111,7 +115,9 @@ impl<'t> FatigueCost<'t> {
             state: state.to_vec(),
             cycles,
             scratch: Vec::with_capacity(task.phases.len() + 1),
+            scratch_value: Vec::with_capacity(task.phases.len() + 1),
             total_cache: vec![None; nh],
+            value_cache: vec![None; nh],
             bound_cache: vec![None; nh],
         }
     }
@@ -122,6 +128,7 @@ impl<'t> FatigueCost<'t> {
             v[p] = f[h];
         }
         self.total_cache.iter_mut().for_each(|c| *c = None);
+        self.value_cache.iter_mut().for_each(|c| *c = None);
         self.bound_cache.iter_mut().for_each(|c| *c = None);
     }
 
@@ -135,6 +142,41 @@ impl<'t> FatigueCost<'t> {
         }
         let (u, s) = self.total(h, Dual2::variable(f));
         self.total_cache[h] = Some((bits, u, s));
+        (u, s)
+    }
+
+    /// [`Self::total`]'s value alone, from either cache when `f` is unchanged.
+    fn cached_value(&mut self, h: usize, f: f64) -> (f64, f64) {
+        let bits = f.to_bits();
+        if let Some((b, u, s)) = self.total_cache[h]
+            && b == bits
+        {
+            return (u.v, s);
+        }
+        if let Some((b, u, s)) = self.value_cache[h]
+            && b == bits
+        {
+            return (u, s);
+        }
+        self.scratch_value.clear();
+        for (s, &t_min) in self.step_t_min.iter().enumerate() {
+            let load = if self.in_group[s] {
+                f
+            } else {
+                self.step_loads[h][s]
+            };
+            self.scratch_value.push(HeldStep { f: load, t_min });
+        }
+        let st = self.state[h];
+        let r = repeated_cycles(
+            &self.task.fatigue[h],
+            &self.scratch_value,
+            st.capacity,
+            self.cycles,
+        );
+        let s = r.u_min.ln_scale;
+        let u = r.u_min.u + st.fatigue_u_min * (-s).exp();
+        self.value_cache[h] = Some((bits, u, s));
         (u, s)
     }
 
@@ -273,12 +315,7 @@ impl LoadCost for FatigueCost<'_> {
 
     fn value(&mut self, f: &[f64]) -> f64 {
         let n = f.len();
-        let terms: Vec<(f64, f64)> = (0..n)
-            .map(|h| {
-                let (u, s) = self.cached_total(h, f[h]);
-                (u.v, s)
-            })
-            .collect();
+        let terms: Vec<(f64, f64)> = (0..n).map(|h| self.cached_value(h, f[h])).collect();
         let mut w = vec![0.0; n];
         log_sum(&terms, &mut w)
     }

@@ -47,8 +47,6 @@ pub struct SqpSettings {
     pub contact_horizon_m: f64,
     /// Clearance rows reserved in the QP (the closest contacts are kept).
     pub clearance_rows: usize,
-    /// Capacity rows reserved in the QP (the half-joints closest to their capacity).
-    pub capacity_rows: usize,
     /// Quadratic penalty of the equality rows' slacks (per m² or rad²).
     pub mu_eq_quadratic: f64,
     /// The QP solver's precision.
@@ -68,7 +66,6 @@ impl Default for SqpSettings {
             damping: 1e-4,
             contact_horizon_m: 0.10,
             clearance_rows: 12,
-            capacity_rows: 8,
             mu_eq_quadratic: 1e8,
             precision: QpPrecision::default(),
         }
@@ -183,7 +180,7 @@ impl SqpWork {
             n,
             a,
             m,
-            c: settings.capacity_rows,
+            c: 2 * a,
             k: settings.clearance_rows,
             e,
         };
@@ -341,17 +338,26 @@ fn build_qp(
     for k in 0..n {
         qp.q[c.dq + k] = work.dq_grad[k];
     }
-    let mut cap_order: Vec<(f64, usize, f64, f64)> = Vec::with_capacity(task.half_joints.len());
+    // Capacity rows, one per half-joint: f − c(f) ≤ 0 linearised at f̄ in the half-joint's own
+    // load, (1 − c′) s/MVC ≤ c(f̄) − c′ f̄. The strength's posture dependence is left out of
+    // these rows (it would couple each row to every posture variable and fill the KKT system);
+    // the rows are re-linearised at every iterate, so the constraint is met at the solution.
+    for i in 0..sz.c {
+        let rr = r.cap + i;
+        qp.set_a(rr, c.v_cap, -1.0);
+        qp.b[rr] = 1e3;
+    }
     for (h, hj) in task.half_joints.iter().enumerate() {
         let Some(row) = scene.actuated_row[hj.q_index] else {
             continue;
         };
         let mvc = hj.mvc_at(q);
         let tau = pw.data.tau_nm[hj.q_index];
-        let (col, s_bar) = match hj.direction {
-            Direction::Positive => (c.s_plus + row, tau.max(0.0)),
-            Direction::Negative => (c.s_minus + row, (-tau).max(0.0)),
+        let (split, s_bar) = match hj.direction {
+            Direction::Positive => (row, tau.max(0.0)),
+            Direction::Negative => (sz.a + row, (-tau).max(0.0)),
         };
+        let col = c.s_plus + split;
         let gs = work.grad[h] / mvc;
         let hs = work.curv[h] / (mvc * mvc);
         qp.p_diag[col] = hs.max(1e-12);
@@ -363,43 +369,12 @@ fn build_qp(
             }
         }
         let (bound, slope) = match prob.cost.capacity_bound(h, work.f[h]) {
-            Some((c, d)) if c < prob.capacity[h] => (c, d),
+            Some((cb, d)) if cb < prob.capacity[h] => (cb, d),
             _ => (prob.capacity[h], 0.0),
         };
-        cap_order.push((work.f[h] - bound, h, bound, slope));
-    }
-    // Capacity rows for the half-joints closest to (or beyond) their capacity.
-    cap_order.sort_by(|a, b| b.0.total_cmp(&a.0));
-    for row in 0..sz.c {
-        let rr = r.cap + row;
-        qp.set_a(rr, c.v_cap, -1.0);
-        match cap_order.get(row) {
-            Some(&(_, h, bound, slope)) => {
-                // f − c(f) ≤ 0 linearised at f̄: (1 − c′) f ≤ c(f̄) − c′ f̄
-                let hj = &task.half_joints[h];
-                let srow = scene.actuated_row[hj.q_index].unwrap_or(0);
-                let col = match hj.direction {
-                    Direction::Positive => c.s_plus + srow,
-                    Direction::Negative => c.s_minus + srow,
-                };
-                let mvc = hj.mvc_at(q);
-                qp.set_a(rr, col, (1.0 - slope) / mvc);
-                // the load s/MVC(q) also moves with the strength's posture dependence
-                let tau = pw.data.tau_nm[hj.q_index];
-                let s_bar = match hj.direction {
-                    Direction::Positive => tau.max(0.0),
-                    Direction::Negative => (-tau).max(0.0),
-                };
-                if hj.posture_dependent() && s_bar > 0.0 {
-                    hj.mvc_gradient(q, &mut work.mvc_grad);
-                    for &(k, dm) in &work.mvc_grad {
-                        qp.add_a(rr, c.dq + k, -(1.0 - slope) * s_bar * dm / (mvc * mvc));
-                    }
-                }
-                qp.b[rr] = bound - slope * work.f[h];
-            }
-            None => qp.b[rr] = 1.0,
-        }
+        let rr = r.cap + split;
+        qp.set_a(rr, col, (1.0 - slope) / mvc);
+        qp.b[rr] = bound - slope * work.f[h];
     }
     // Torque split rows.
     for (row, &j) in scene.actuated.iter().enumerate() {

@@ -472,6 +472,24 @@ impl Task {
         self.half_joints.iter().map(|h| h.id.clone()).collect()
     }
 
+    /// SHA-256 (hex) of what the task was made from: the task as parsed (so formatting and
+    /// comments do not count) and the bytes of every file it read (robot, strength table,
+    /// parameter file). Shards of one study carry it so that a merge can refuse results made
+    /// from different files.
+    pub fn fingerprint(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let mut h = Sha256::new();
+        h.update(serde_json::to_vec(&self.source).unwrap_or_default());
+        for f in &self.input_files {
+            h.update(b"\0file\0");
+            match std::fs::read(f) {
+                Ok(bytes) => h.update(&bytes),
+                Err(_) => h.update(f.display().to_string().as_bytes()),
+            }
+        }
+        format!("{:x}", h.finalize())
+    }
+
     /// Reads and validates a task file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, TaskError> {
         let path = path.as_ref();

@@ -114,6 +114,9 @@ pub struct CompareShard {
     pub fatigue_only: bool,
     pub capacity_floor: f64,
     pub layouts_total: usize,
+    /// Every layout's [`Task::fingerprint`], in the order given: shards merge only when they
+    /// were made from the same files.
+    pub layout_fingerprints: Vec<String>,
     pub outcomes: Vec<LayoutOutcome>,
 }
 
@@ -449,6 +452,7 @@ pub fn compare_shard(
         fatigue_only: opts.fatigue_only,
         capacity_floor: floor,
         layouts_total: tasks.len(),
+        layout_fingerprints: tasks.iter().map(Task::fingerprint).collect(),
         outcomes: results.into_iter().map(|r| r.0).collect(),
     })
 }
@@ -462,6 +466,14 @@ pub enum MergeError {
         "{file}: made with other options than {first} (adaptive, fatigue-only, capacity floor and layout count must agree)"
     )]
     Options { file: String, first: String },
+    #[error(
+        "{file}: made from other layout files than {first} (layout {index}'s task, robot or parameter file differs)"
+    )]
+    Files {
+        file: String,
+        first: String,
+        index: usize,
+    },
     #[error("layout {index} appears in two shards ({file})")]
     Twice { index: usize, file: String },
     #[error("the shards cover {got} of {total} layouts: missing {missing:?}")]
@@ -512,6 +524,18 @@ pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError
             return Err(MergeError::Options {
                 file: name.clone(),
                 first: first_name.clone(),
+            });
+        }
+        if s.layout_fingerprints.len() != s.layouts_total
+            || s.layout_fingerprints != first.layout_fingerprints
+        {
+            let index = (0..s.layouts_total)
+                .find(|&i| s.layout_fingerprints.get(i) != first.layout_fingerprints.get(i))
+                .unwrap_or(0);
+            return Err(MergeError::Files {
+                file: name.clone(),
+                first: first_name.clone(),
+                index,
             });
         }
         for o in &s.outcomes {

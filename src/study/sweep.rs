@@ -278,9 +278,52 @@ pub struct SweepShard {
     pub population: String,
     pub sampled: bool,
     pub adaptive: bool,
+    pub fatigue_only: bool,
     pub capacity_floor: f64,
+    /// [`Task::fingerprint`](crate::plan::Task::fingerprint) of the task swept: shards merge
+    /// only when they were made from the same files.
+    pub task_fingerprint: String,
     pub workers_total: usize,
     pub workers: Vec<WorkerOutcome>,
+}
+
+impl SweepShard {
+    /// A shard's result: `workers` of the `workers_total` of `population`, planned from `file`
+    /// (read from `path`) with `opts`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        file: &TaskFile,
+        path: &Path,
+        shard: Shard,
+        population: String,
+        sampled: bool,
+        opts: PlanOptions,
+        capacity_floor: f64,
+        workers_total: usize,
+        workers: Vec<WorkerOutcome>,
+    ) -> Self {
+        let task_fingerprint = match crate::plan::Task::from_task_file(file.clone(), path) {
+            Ok(t) => t.fingerprint(),
+            Err(_) => {
+                use sha2::{Digest, Sha256};
+                let text = serde_json::to_vec(file).unwrap_or_default();
+                format!("{:x}", Sha256::digest(&text))
+            }
+        };
+        SweepShard {
+            kind: SHARD_KIND.into(),
+            shard: shard.to_string(),
+            task: file.name.clone(),
+            population,
+            sampled,
+            adaptive: opts.adapt,
+            fatigue_only: opts.fatigue_only,
+            capacity_floor,
+            task_fingerprint,
+            workers_total,
+            workers,
+        }
+    }
 }
 
 pub const SHARD_KIND: &str = "posture-opt sweep shard";
@@ -510,12 +553,19 @@ pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
         if s.task != first.task
             || s.population != first.population
             || s.adaptive != first.adaptive
+            || s.fatigue_only != first.fatigue_only
             || s.capacity_floor != first.capacity_floor
             || s.workers_total != first.workers_total
         {
             return Err(bad(
                 name,
-                "made for another task, population or options than the first shard".into(),
+                "made for another task, population or options (adaptive, fatigue-only, capacity floor) than the first shard".into(),
+            ));
+        }
+        if s.task_fingerprint != first.task_fingerprint {
+            return Err(bad(
+                name,
+                "made from other files than the first shard (the task, its robot or its parameter file differs)".into(),
             ));
         }
         for w in &s.workers {

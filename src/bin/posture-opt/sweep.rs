@@ -113,17 +113,17 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         return Ok(());
     }
     if a.shard.is_some() {
-        return print_json(&SweepShard {
-            kind: sweep::SHARD_KIND.into(),
-            shard: shard.to_string(),
-            task: file.name.clone(),
+        return print_json(&SweepShard::new(
+            &file,
+            task_path,
+            shard,
             population,
             sampled,
-            adaptive: opts.adapt,
-            capacity_floor: a.assess.capacity_floor,
-            workers_total: members.len(),
+            opts,
+            a.assess.capacity_floor,
+            members.len(),
             workers,
-        });
+        ));
     }
     let s = Sweep::from_outcomes(
         &file.name,
