@@ -182,7 +182,8 @@ impl<'t> Evaluator<'t> {
                     });
                 }
                 p.hold(&mut self.state[h], f, dt);
-                if !(self.state[h].fatigue_u_min <= MAX_FATIGUE_U_MIN) {
+                let u = self.state[h].fatigue_u_min;
+                if u.is_nan() || u > MAX_FATIGUE_U_MIN {
                     let hj = &self.task.half_joints[h];
                     let since = self
                         .events
