@@ -421,3 +421,30 @@ fn bad_files_are_refused() {
         Err(FitError::Data { .. })
     ));
 }
+
+/// Intermittent holds are predicted in closed form whatever their cycle: without recovery the
+/// capacity falls only while working, so exhaustion comes after MET of work time
+/// (`MET = −ln f/(k f)`, Eq. 8) plus the rests between: `MET + ⌊MET/on⌋·off`. With 10 ms on,
+/// 10 ms off (8 317 work periods before exhaustion) the row is answered at once.
+#[test]
+fn intermittent_endurance_of_very_short_cycles_is_the_closed_form() {
+    use posture_opt::fatigue::MaParams;
+    use posture_opt::fatigue::fit::{Measured, Row, predict};
+    let p = MaParams::new(1.0, 0.0).unwrap();
+    for (f, on, off) in [(0.5, 0.01, 0.01), (0.3, 1.0, 2.0), (0.7, 0.013, 0.5)] {
+        let met_s = -f64::ln(f) / f * 60.0;
+        let want = met_s + (met_s / on).floor() * off;
+        let row = Row {
+            line: 2,
+            region: "grip".into(),
+            load_fmvc: f,
+            cycle_s: Some((on, off)),
+            what: Measured::EnduranceS(100.0),
+        };
+        let got = predict(&p, &row);
+        assert!(
+            (got - want).abs() < 1e-6 * want,
+            "f {f}, {on}/{off} s: {got} vs {want}"
+        );
+    }
+}

@@ -1046,3 +1046,40 @@ fn tiny_recovery_rate_long_hold() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// A run of alike cycles skipped in closed form (`CycleMap`, used by the work/rest advice) ends
+/// where holding every step of every cycle ends.
+#[test]
+fn cycle_map_matches_the_held_steps() {
+    use posture_opt::fatigue::ma::CycleMap;
+    use posture_opt::fatigue::{MaParams, MaState, Recovery};
+    let params = [
+        MaParams::new(1.0, 0.0).unwrap(),
+        MaParams::new(0.8, 0.3).unwrap(),
+        MaParams::with_recovery(
+            1.4,
+            Recovery::Perfusion {
+                rest_per_min: 0.37,
+                limit_fmvc: 0.085,
+            },
+        )
+        .unwrap(),
+    ];
+    let steps = [(0.2, 4.0), (0.05, 3.0), (0.0, 6.0)];
+    for p in &params {
+        for n in [1u32, 7, 300] {
+            let mut s = MaState::FRESH;
+            for _ in 0..n {
+                for (f, t) in steps {
+                    p.hold(&mut s, f, t);
+                }
+            }
+            let got = CycleMap::new(p, steps).after(1.0, n as f64);
+            assert!(
+                (got - s.capacity).abs() < 1e-12,
+                "{p:?}, {n}: {got} vs {}",
+                s.capacity
+            );
+        }
+    }
+}

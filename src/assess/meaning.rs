@@ -17,8 +17,15 @@ use serde::Serialize;
 #[derive(Debug, Clone, Serialize)]
 pub struct Meaning {
     /// Minutes from the start until a muscle group gives out if the cycle is kept up with the
-    /// plan's final postures; `None`: never.
+    /// plan's final postures; `None` when none gave out in the time followed — read it with
+    /// `exhaustion_verdict`: "never" or "not_determined".
     pub minutes_to_exhaustion: Option<f64>,
+    /// "gives_out" (at `minutes_to_exhaustion`), "never" (every group settled above its loads),
+    /// or "not_determined" (the pace was followed for `minutes_followed` — a week, or two
+    /// million cycles — without an exhaustion, and the capacities had not settled yet).
+    pub exhaustion_verdict: &'static str,
+    /// How long the pace was followed \[min\].
+    pub minutes_followed: f64,
     /// The group that gives out first, when one does.
     pub first_to_give_out: Option<String>,
     /// The largest share of a rested muscle's endurance one hold uses (0..1+), and where.
@@ -163,6 +170,12 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
     };
     Meaning {
         minutes_to_exhaustion: exhausted.map(|(te, _)| te / 60.0),
+        exhaustion_verdict: match (exhausted, settled_reached) {
+            (Some(_), _) => "gives_out",
+            (None, true) => "never",
+            (None, false) => "not_determined",
+        },
+        minutes_followed: exhausted.map_or(t, |(te, _)| te) / 60.0,
         first_to_give_out: exhausted.map(|(_, h)| group(h)),
         endurance_share: share,
         endurance_group: group(sh_h),

@@ -23,6 +23,7 @@
 //! The floor is a planning choice (default [`DEFAULT_CAPACITY_FLOOR`], an ASSUMPTION: keep 70 %
 //! of MVC available).
 
+use crate::fatigue::ma::CycleMap;
 use crate::fatigue::{MaParams, MaState};
 use crate::plan::{Plan, Task};
 use serde::Serialize;
@@ -148,7 +149,7 @@ fn replay(
             }
         }
     };
-    for cycle in cycles {
+    let mut run = |cycle: &[usize], state: &mut [MaState]| {
         for (p, &pi) in cycle.iter().enumerate() {
             let f = &plan.postures[pi].load;
             for (h, s) in state.iter_mut().enumerate() {
@@ -162,6 +163,36 @@ fn replay(
             }
             check(state, f_rest);
         }
+    };
+    // The cycles after the last re-plan are all alike: the first and the last of them are held
+    // step by step, those between are skipped in closed form. Each step's end capacity is an
+    // increasing affine function of the capacity at its cycle's start, which moves monotonically
+    // from cycle to cycle ([`CycleMap`]), so over alike cycles the margins and capacities are
+    // extreme at the first or the last: the answer is the step-by-step one, in time independent
+    // of the number of cycles.
+    let n = cycles.len();
+    let tail = (1..n)
+        .rev()
+        .find(|&i| cycles[i] != cycles[i - 1])
+        .unwrap_or(0);
+    for cycle in &cycles[..(tail + 1).min(n)] {
+        run(cycle, state);
+    }
+    let alike_after = n.saturating_sub(tail + 1);
+    if alike_after >= 2 {
+        let cycle = &cycles[tail];
+        for (h, s) in state.iter_mut().enumerate() {
+            let steps = cycle
+                .iter()
+                .enumerate()
+                .map(|(p, &pi)| (plan.postures[pi].load[h], task.phases[p].duration_s))
+                .chain((rest_s > 0.0).then_some((f_rest[h], rest_s)));
+            s.capacity =
+                CycleMap::new(&params[h], steps).after(s.capacity, (alike_after - 1) as f64);
+        }
+    }
+    if alike_after >= 1 {
+        run(&cycles[n - 1], state);
     }
     (margin, min_c.0, min_c.1)
 }

@@ -72,8 +72,11 @@ pub const MAX_SHAPE_SIZE_M: f64 = 10.0;
 pub const MAX_OFFSET_M: f64 = 100.0;
 /// Largest link mass accepted \[kg\].
 pub const MAX_LINK_MASS_KG: f64 = 10_000.0;
-/// Most moving joints a body may have.
+/// Most moving joints a body may have (statics, evaluate; `plan` takes fewer:
+/// `plan::task::MAX_PLAN_MOVING_JOINTS`).
 pub const MAX_MOVING_JOINTS: usize = 512;
+/// Most joints of any kind (fixed ones included) and most links a body may have.
+pub const MAX_JOINTS: usize = 4096;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Joint {
@@ -107,10 +110,10 @@ pub struct BodyModel {
     pub joints: Vec<Joint>,
     /// For each q index, the joint index.
     pub joint_of_q: Vec<usize>,
-    /// `ancestor[i * nj + j]`: joint i is joint j or an ancestor of it (on the path to the root).
-    ancestor: Vec<bool>,
-    /// For each link, whether joint i is on its path to the root: `link_anc[l * nj + i]`.
-    link_anc: Vec<bool>,
+    /// Joints are in depth-first preorder, so joint i's subtree is the joints `i..subtree_end[i]`:
+    /// joint i is joint j or an ancestor of it iff `i <= j < subtree_end[i]` (memory linear in
+    /// the joints, not quadratic).
+    subtree_end: Vec<usize>,
     /// `q_ancestor[a * nq + b]`: the joint of q index a is that of q index b or an ancestor.
     q_ancestor: Vec<bool>,
     /// Rigid bodies: fixed joints folded into their parents (as Pinocchio does). Body 0 is the
@@ -184,6 +187,16 @@ impl BodyModel {
         let finite3 = |v: &[f64; 3]| v.iter().all(|x| x.is_finite());
         if robot.links.is_empty() {
             return Err(invalid("robot".into(), "has no <link>".into()));
+        }
+        if robot.links.len() > MAX_JOINTS + 1 || robot.joints.len() > MAX_JOINTS {
+            return Err(invalid(
+                "robot".into(),
+                format!(
+                    "has {} links and {} joints; at most {MAX_JOINTS} joints (fixed ones included) are read",
+                    robot.links.len(),
+                    robot.joints.len()
+                ),
+            ));
         }
         let mut link_index = std::collections::HashMap::new();
         let mut links = Vec::with_capacity(robot.links.len());
@@ -500,28 +513,20 @@ impl BodyModel {
         }
 
         let nj = joints.len();
-        let mut ancestor = vec![false; nj * nj];
-        for j in 0..nj {
-            // walk up from joint j
-            let mut cur = Some(j);
-            while let Some(i) = cur {
-                ancestor[i * nj + j] = true;
-                cur = links[joints[i].parent_link].parent_joint;
-            }
-        }
-        let mut link_anc = vec![false; links.len() * nj];
-        for (l, link) in links.iter().enumerate() {
-            let mut cur = link.parent_joint;
-            while let Some(i) = cur {
-                link_anc[l * nj + i] = true;
-                cur = links[joints[i].parent_link].parent_joint;
+        // preorder: a joint's subtree follows it; its end is the largest end among its children
+        let mut subtree_end: Vec<usize> = (1..=nj).collect();
+        for j in (0..nj).rev() {
+            if let Some(p) = links[joints[j].parent_link].parent_joint {
+                subtree_end[p] = subtree_end[p].max(subtree_end[j]);
             }
         }
         let nq = joint_of_q.len();
         let mut q_ancestor = vec![false; nq * nq];
         for a in 0..nq {
+            let ja = joint_of_q[a];
             for b in 0..nq {
-                q_ancestor[a * nq + b] = ancestor[joint_of_q[a] * nj + joint_of_q[b]];
+                let jb = joint_of_q[b];
+                q_ancestor[a * nq + b] = ja <= jb && jb < subtree_end[ja];
             }
         }
         // Fold fixed joints: walk joints in topological order, placing each link in its body.
@@ -594,8 +599,7 @@ impl BodyModel {
             links,
             joints,
             joint_of_q,
-            ancestor,
-            link_anc,
+            subtree_end,
             q_ancestor,
             bodies,
             link_in_body,
@@ -642,7 +646,7 @@ impl BodyModel {
     /// Whether joint `i` is joint `j` or one of its ancestors.
     #[inline]
     pub fn is_ancestor_or_self(&self, i: usize, j: usize) -> bool {
-        self.ancestor[i * self.joints.len() + j]
+        i <= j && j < self.subtree_end[i]
     }
 
     /// Whether the joint of q index `a` is that of q index `b` or one of its ancestors.
@@ -660,7 +664,9 @@ impl BodyModel {
     /// Whether joint `i` moves link `l` (lies on its path to the root).
     #[inline]
     pub fn moves_link(&self, i: usize, l: usize) -> bool {
-        self.link_anc[l * self.joints.len() + i]
+        self.links[l]
+            .parent_joint
+            .is_some_and(|p| self.is_ancestor_or_self(i, p))
     }
 
     /// Total mass \[kg\].

@@ -117,6 +117,8 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
         col("capacity"),
     );
     let mut rows = Vec::new();
+    // newlines before byte `counted_to`, counted once as the reader advances (linear in the file)
+    let (mut counted_to, mut newlines) = (0usize, 0usize);
     for (i, rec) in rdr.records().enumerate() {
         // the file's own line (blank lines skipped by the reader count too)
         let line = rec
@@ -128,9 +130,13 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
                 let start = p.byte() as usize;
                 let rest = text.get(start..)?;
                 let blank = rest.len() - rest.trim_start_matches(['\r', '\n']).len();
-                text.get(..start + blank)
+                let end = start + blank;
+                let gap = text.as_bytes().get(counted_to..end)?;
+                newlines += gap.iter().filter(|&&b| b == b'\n').count();
+                counted_to = end;
+                Some(newlines + 1)
             })
-            .map_or(i + 2, |before| before.matches('\n').count() + 1);
+            .unwrap_or(i + 2);
         let bad = |problem: String| FitError::Row {
             file: file.to_string(),
             line,
@@ -215,44 +221,141 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
 }
 
 /// The model's prediction for a row: endurance time \[s\] (capped at 24 h) or capacity.
+///
+/// Intermittent holds are summed in closed form, so a row costs the same however short its
+/// cycles: one on-off cycle maps the capacity at its start affinely, `c ↦ A c + B` (each held
+/// step is `c ↦ c∞ + (c − c∞) e^{−λt}`), so the capacity at the start of cycle `n` is
+/// `c* + (1 − c*) Aⁿ` with `c* = B/(1 − A)`; exhaustion comes in the first cycle whose start lies
+/// at or below the capacity from which the work period reaches the load.
 pub fn predict(p: &MaParams, row: &Row) -> f64 {
     let f = row.load_fmvc;
     let mut s = MaState::FRESH;
-    let (on, off) = row.cycle_s.unwrap_or((MAX_ENDURANCE_S, 0.0));
-    let mut t = 0.0;
-    match row.what {
-        Measured::EnduranceS(_) => {
-            while t < MAX_ENDURANCE_S {
-                if let Some(te) = p.time_to_exhaustion_s(s.capacity, f)
-                    && te <= on
-                {
-                    return (t + te).min(MAX_ENDURANCE_S);
-                }
-                p.hold(&mut s, f, on);
-                t += on;
-                if off > 0.0 {
-                    p.hold(&mut s, 0.0, off);
-                    t += off;
+    match (row.cycle_s, row.what) {
+        (Some((on, off)), what) => {
+            let cy = Cycle::new(p, f, on, off);
+            match what {
+                Measured::EnduranceS(_) => cy.endurance_s(p, f),
+                Measured::Capacity { t_s, .. } => {
+                    let period = on + off;
+                    let n = (t_s / period).floor();
+                    let mut t = n * period;
+                    s.capacity = cy.start_capacity(n);
+                    let d = on.min(t_s - t);
+                    if d > 0.0 {
+                        p.hold(&mut s, f, d);
+                        t += d;
+                    }
+                    let d = off.min(t_s - t);
+                    if d > 0.0 {
+                        p.hold(&mut s, 0.0, d);
+                    }
+                    s.capacity
                 }
             }
-            MAX_ENDURANCE_S
         }
-        Measured::Capacity { t_s, .. } => {
-            while t < t_s {
-                let d = on.min(t_s - t);
-                p.hold(&mut s, f, d);
-                t += d;
-                if t >= t_s {
-                    break;
-                }
-                let d = off.min(t_s - t);
-                if d > 0.0 {
-                    p.hold(&mut s, 0.0, d);
-                    t += d;
-                }
-            }
+        (None, Measured::EnduranceS(_)) => p
+            .time_to_exhaustion_s(1.0, f)
+            .map_or(MAX_ENDURANCE_S, |te| te.min(MAX_ENDURANCE_S)),
+        (None, Measured::Capacity { t_s, .. }) => {
+            p.hold(&mut s, f, t_s);
             s.capacity
         }
+    }
+}
+
+/// One on-off cycle of an intermittent hold as an affine map of the capacity at its start.
+struct Cycle {
+    on_s: f64,
+    off_s: f64,
+    /// The work period: `c ↦ a_on c + b_on`.
+    a_on: f64,
+    b_on: f64,
+    /// `ln A` and `c*` of the whole cycle's map.
+    ln_a: f64,
+    c_star: f64,
+}
+
+impl Cycle {
+    fn new(p: &MaParams, f: f64, on_s: f64, off_s: f64) -> Self {
+        // a held step: (ln a, b) of c ↦ a c + b, a = e^{−λt}, b = c∞ (1 − a)
+        let step = |load: f64, t_s: f64| {
+            let r = p.r_at(load);
+            let lambda = p.k_per_min * load + r;
+            let ln_a = -lambda * t_s / 60.0;
+            let c_inf = if lambda > 0.0 { r / lambda } else { 0.0 };
+            (ln_a, c_inf * -ln_a.exp_m1())
+        };
+        let (ln_on, b_on) = step(f, on_s);
+        let (ln_off, b_off) = step(0.0, off_s);
+        let a_off = ln_off.exp();
+        let ln_a = ln_on + ln_off;
+        let b = a_off * b_on + b_off;
+        let one_minus_a = -ln_a.exp_m1();
+        let c_star = if one_minus_a > 0.0 {
+            (b / one_minus_a).min(1.0)
+        } else {
+            1.0
+        };
+        Cycle {
+            on_s,
+            off_s,
+            a_on: ln_on.exp(),
+            b_on,
+            ln_a,
+            c_star,
+        }
+    }
+
+    /// Capacity at the start of cycle `n` (from rested).
+    fn start_capacity(&self, n: f64) -> f64 {
+        (self.c_star + (1.0 - self.c_star) * (self.ln_a * n).exp()).clamp(f64::MIN_POSITIVE, 1.0)
+    }
+
+    /// Endurance \[s\] (capped at 24 h): the first cycle whose work period reaches the load.
+    fn endurance_s(&self, p: &MaParams, f: f64) -> f64 {
+        let period = self.on_s + self.off_s;
+        // a cycle starting at c is exhausted iff min(c, a_on c + b_on) ≤ f
+        let thr = if self.a_on > 0.0 {
+            f.max((f - self.b_on) / self.a_on)
+        } else if self.b_on <= f {
+            f64::INFINITY
+        } else {
+            f
+        };
+        let exhausted = |n: f64| self.start_capacity(n) <= thr;
+        let n = if thr >= 1.0 {
+            0.0
+        } else if thr <= self.c_star || self.ln_a >= 0.0 {
+            return MAX_ENDURANCE_S;
+        } else {
+            let n = (((thr - self.c_star) / (1.0 - self.c_star)).ln() / self.ln_a)
+                .ceil()
+                .max(0.0);
+            if n * period >= MAX_ENDURANCE_S {
+                return MAX_ENDURANCE_S;
+            }
+            // the closed form's rounding: settle on the first exhausted cycle
+            let mut n = n;
+            while n > 0.0 && exhausted(n - 1.0) {
+                n -= 1.0;
+            }
+            while !exhausted(n) {
+                n += 1.0;
+                if n * period >= MAX_ENDURANCE_S {
+                    return MAX_ENDURANCE_S;
+                }
+            }
+            n
+        };
+        let t = n * period;
+        if t >= MAX_ENDURANCE_S {
+            return MAX_ENDURANCE_S;
+        }
+        let te = p
+            .time_to_exhaustion_s(self.start_capacity(n), f)
+            .unwrap_or(self.on_s)
+            .min(self.on_s);
+        (t + te).min(MAX_ENDURANCE_S)
     }
 }
 
@@ -517,15 +620,23 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     let t = StudentsT::new(0.0, 1.0, dof)
         .map(|d| d.inverse_cdf(0.975))
         .unwrap_or(1.96);
+    // intervals are kept within the values the model accepts (k within its limits, R_rest at
+    // most its limit): an interval reaching a limit means the data do not pin the value down
     let est = |j: usize| {
         let se = cov
             .as_ref()
             .map_or(f64::INFINITY, |c| (s2 * c[(j, j)].max(0.0)).sqrt());
         let v = theta[j];
+        let (lo, hi) = if j < pr.regions.len() {
+            (K_MIN_PER_MIN, K_MAX_PER_MIN)
+        } else {
+            (0.0, super::ma::R_MAX_PER_MIN)
+        };
+        let bound = |x: f64, nan: f64| if x.is_nan() { nan } else { x.clamp(lo, hi) };
         Estimate {
             value: v.exp(),
-            low: (v - t * se).exp(),
-            high: (v + t * se).min(700.0).exp(),
+            low: bound((v - t * se).exp(), lo).min(v.exp()),
+            high: bound((v + t * se).min(700.0).exp(), hi).max(v.exp()),
         }
     };
     let rest_per_min = if fit_rest {
@@ -643,6 +754,7 @@ impl Fit {
             regions,
             female,
             male,
+            unlisted_regions_use_general: base.unlisted_regions_use_general,
         }
     }
 }

@@ -314,6 +314,47 @@ impl MaParams {
     }
 }
 
+/// A cycle of held steps as a map of the capacity at its start: `c ↦ A c + B`. Each step held
+/// at load `f` for `t` is `c ↦ c∞ + (c − c∞) e^{−λt}` (`λ = k f + R(f)`, `c∞ = R/λ`), so a cycle
+/// is affine with slope `A = e^{−Σλt} > 0`, and `n` cycles take `c0` to `c* + (c0 − c*) Aⁿ`
+/// (`c* = B/(1 − A)`): monotone in `n`, which is what lets a long run of identical cycles be
+/// skipped in O(1) when only capacities are wanted.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleMap {
+    /// `ln A` (≤ 0).
+    pub ln_a: f64,
+    /// `B`.
+    pub b: f64,
+}
+
+impl CycleMap {
+    /// The map of holding `(load, seconds)` steps in order with `p`.
+    pub fn new(p: &MaParams, steps: impl IntoIterator<Item = (f64, f64)>) -> Self {
+        let (mut ln_a, mut b) = (0.0f64, 0.0f64);
+        for (f, t_s) in steps {
+            let r = p.r_at(f);
+            let lambda = p.k_per_min * f + r;
+            if !(lambda > 0.0 && t_s > 0.0) {
+                continue;
+            }
+            let lt = -lambda * s_to_min(t_s);
+            // the step: c ↦ s c + c∞ (1 − s), s = e^{lt}
+            b = b * lt.exp() + (r / lambda) * -lt.exp_m1();
+            ln_a += lt;
+        }
+        CycleMap { ln_a, b }
+    }
+
+    /// Capacity after `n` cycles from `c0` (kept within the state's bounds, like [`MaParams::hold`]).
+    pub fn after(&self, c0: f64, n: f64) -> f64 {
+        if n <= 0.0 || self.ln_a >= 0.0 {
+            return c0;
+        }
+        let c_star = self.b / -self.ln_a.exp_m1();
+        (c_star + (c0 - c_star) * (self.ln_a * n).exp()).clamp(C_FLOOR, 1.0)
+    }
+}
+
 /// Paper Eq. 8 on its own: `MET = -ln f / (k f)` \[min\], for `f` in (0, 1].
 pub fn met_min(f: f64, k_per_min: f64) -> f64 {
     -f.ln() / (k_per_min * f)

@@ -64,6 +64,10 @@ pub struct ParameterSet {
     pub female: std::collections::BTreeMap<String, RegionK>,
     #[serde(default)]
     pub male: std::collections::BTreeMap<String, RegionK>,
+    /// Regions missing from `regions` take the `general` region's k. Off by default: a set read
+    /// from a file must then list every region ([`super::fit::REGIONS`]).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub unlisted_regions_use_general: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -139,6 +143,25 @@ impl ParameterSet {
                         r.k_low, r.k, r.k_high
                     ));
                 }
+            }
+        }
+        let missing: Vec<&str> = known
+            .iter()
+            .copied()
+            .filter(|r| !set.regions.contains_key(*r))
+            .collect();
+        if !missing.is_empty() {
+            if !set.unlisted_regions_use_general {
+                return Err(format!(
+                    "{origin}: regions: missing {} (a set lists every region: {}); or write `unlisted_regions_use_general: true` to give them the general region's k",
+                    missing.join(", "),
+                    known.join(", ")
+                ));
+            }
+            if missing.contains(&"general") {
+                return Err(format!(
+                    "{origin}: regions: unlisted_regions_use_general needs the region general, which is missing"
+                ));
             }
         }
         if let RecoverySpec::Perfusion {

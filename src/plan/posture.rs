@@ -156,6 +156,10 @@ impl Scene {
             }
         };
         let mut self_pairs = Vec::new();
+        let mut body_has_capsule = vec![false; m.bodies.len()];
+        for c in &capsules {
+            body_has_capsule[m.link_in_body[c.link].body] = true;
+        }
         for i in 0..capsules.len() {
             for j in i + 1..capsules.len() {
                 let (bi, bj) = (
@@ -174,8 +178,7 @@ impl Scene {
                             adjacent = true;
                             break;
                         }
-                        let has = capsules.iter().any(|c| m.link_in_body[c.link].body == pb);
-                        if has {
+                        if body_has_capsule[pb] {
                             break;
                         }
                         p = parent_body(pb);

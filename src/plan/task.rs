@@ -31,6 +31,14 @@ pub const MAX_LOAD_KG: f64 = 1000.0;
 pub const MAX_HAND_FORCE_N: f64 = 10_000.0;
 /// Largest gravity accepted \[m/s²\] (three g).
 pub const MAX_GRAVITY_M_S2: f64 = 3.0 * 9.81;
+/// Smallest gravity accepted \[m/s²\] (a tenth of g): below it, strength and balance say nothing.
+pub const MIN_GRAVITY_M_S2: f64 = 0.1 * 9.81;
+/// Largest angle between gravity and straight down (−z, the world's vertical) \[deg\]: the
+/// worker stands on a floor at z = 0 with z up.
+pub const MAX_GRAVITY_TILT_DEG: f64 = 30.0;
+/// Most moving joints of a body `plan` (and compare, sweep) plans: the optimiser's time grows
+/// with about the cube of the joints (a 64-joint chain with collision capsules took over six minutes for one phase).
+pub const MAX_PLAN_MOVING_JOINTS: usize = 48;
 /// Most held steps a plan may have (cycles × (phases + rest)): bounds time and memory.
 pub const MAX_STEPS: u64 = 400_000;
 /// Most phases per cycle.
@@ -56,7 +64,8 @@ pub struct TaskFile {
     /// Frame of the left hand's grip (default `l_hand_grip` when the body has it).
     #[serde(default)]
     pub left_hand_frame: Option<String>,
-    /// Gravity \[m/s²\], world frame; default (0, 0, −9.81). Magnitude at most 3 g.
+    /// Gravity \[m/s²\], world frame; default (0, 0, −9.81). Magnitude 0.1 g–3 g, pointing down:
+    /// within 30° of −z (the world has z up and the floor at z = 0).
     #[serde(default)]
     pub gravity_m_s2: Option<[f64; 3]>,
     /// Where the feet stand (bodies with a floating pelvis).
@@ -519,20 +528,7 @@ impl Task {
             .validate()
             .map_err(|e| field("worker", e.to_string()))?;
         let gravity = match f.gravity_m_s2 {
-            Some(g)
-                if g.iter().all(|x| x.is_finite())
-                    && Vector3::from(g).norm() <= MAX_GRAVITY_M_S2 =>
-            {
-                Vector3::from(g)
-            }
-            Some(g) => {
-                return Err(field(
-                    "gravity_m_s2",
-                    format!(
-                        "must be finite with a magnitude of at most {MAX_GRAVITY_M_S2} m/s² (3 g), got {g:?}"
-                    ),
-                ));
-            }
+            Some(g) => check_gravity(g).map_err(|e| field("gravity_m_s2", e))?,
             None => GRAVITY_M_S2,
         };
         let mut input_files = Vec::new();
@@ -597,6 +593,15 @@ impl Task {
             return Err(field(
                 "robot",
                 "the robot has no moving joints: there is no posture to plan".into(),
+            ));
+        }
+        if model.nq() > MAX_PLAN_MOVING_JOINTS {
+            return Err(field(
+                "robot",
+                format!(
+                    "{robot} has {} moving joints; a plan takes at most {MAX_PLAN_MOVING_JOINTS} (the optimiser's time grows with about their cube): fix joints that do not matter for the task (type=\"fixed\")",
+                    model.nq()
+                ),
             ));
         }
         let hand_names = [
@@ -1209,4 +1214,23 @@ fn resolve_fatigue(
         },
     };
     Ok((out, choice, set))
+}
+
+/// Checks a task's gravity: finite, between [`MIN_GRAVITY_M_S2`] and [`MAX_GRAVITY_M_S2`], and
+/// within [`MAX_GRAVITY_TILT_DEG`] of straight down (−z).
+pub fn check_gravity(g: [f64; 3]) -> Result<Vector3<f64>, String> {
+    let v = Vector3::from(g);
+    let norm = v.norm();
+    if !(g.iter().all(|x| x.is_finite()) && (MIN_GRAVITY_M_S2..=MAX_GRAVITY_M_S2).contains(&norm)) {
+        return Err(format!(
+            "must be finite with a magnitude within {MIN_GRAVITY_M_S2:.3}..{MAX_GRAVITY_M_S2:.2} m/s² (0.1 to 3 g), got {g:?}"
+        ));
+    }
+    let tilt_deg = (-v.z / norm).clamp(-1.0, 1.0).acos().to_degrees();
+    if tilt_deg > MAX_GRAVITY_TILT_DEG {
+        return Err(format!(
+            "must point down (−z: the world frame has z up and the floor at z = 0), within {MAX_GRAVITY_TILT_DEG}° of vertical; {g:?} is {tilt_deg:.1}° from straight down"
+        ));
+    }
+    Ok(v)
 }

@@ -64,6 +64,26 @@ pub fn read_line_bounded(
     Ok(true)
 }
 
+/// The fields of one CSV line, quoting as RFC 4180 (the csv crate): `"a,b"` is one field and
+/// `""` inside quotes is a quote. A quoted field may not span lines.
+pub fn split_fields(text: &str) -> Result<Vec<String>, String> {
+    if text.bytes().filter(|&b| b == b'"').count() % 2 == 1 {
+        return Err("a quoted field is not closed on its line".into());
+    }
+    let mut r = ::csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    let mut rec = ::csv::StringRecord::new();
+    let got = r
+        .read_record(&mut rec)
+        .map_err(|e| format!("not CSV: {e}"))?;
+    if !got {
+        return Ok(vec![String::new()]);
+    }
+    Ok(rec.iter().map(str::to_string).collect())
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Kind {
     Joint(usize),
@@ -87,7 +107,11 @@ impl Columns {
             source_name: source.into(),
             problem,
         };
-        let names: Vec<String> = header.split(',').map(|s| s.trim().to_string()).collect();
+        let names: Vec<String> = split_fields(header)
+            .map_err(bad)?
+            .iter()
+            .map(|s| s.trim().to_string())
+            .collect();
         match names.first().map(String::as_str) {
             Some("t_s" | "time") => {}
             other => {
@@ -166,7 +190,18 @@ impl Columns {
             name: self.names.get(column - 1).cloned().unwrap_or_default(),
             problem,
         };
-        let mut fields = text.split(',');
+        // the common case (no quotes) without the csv parser; quoted cells through it
+        let quoted;
+        let mut fields: Box<dyn Iterator<Item = &str>> = if text.contains('"') {
+            quoted = split_fields(text).map_err(|problem| RecordingError::Line {
+                source_name: source.into(),
+                line,
+                problem,
+            })?;
+            Box::new(quoted.iter().map(String::as_str))
+        } else {
+            Box::new(text.split(','))
+        };
         let mut num = |column: usize| -> Result<f64, RecordingError> {
             let raw = fields
                 .next()

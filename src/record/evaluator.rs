@@ -32,6 +32,11 @@ pub const MAX_TIME_S: f64 = 1e9;
 /// Largest |joint value| of a sample (rad, or m for a prismatic joint).
 pub const MAX_JOINT_VALUE: f64 = 1000.0;
 
+/// Largest fatigue index a group may reach \[min\]: far beyond any real hold (U grows like
+/// `e^{2kF}` once a group is held past exhaustion), and small enough that a sum over every
+/// group stays far below the largest double. A recording that goes beyond is refused.
+pub const MAX_FATIGUE_U_MIN: f64 = 1e250;
+
 /// The evaluation state: the task's body, worker and fatigue parameters, a statics workspace and
 /// every half-joint's fatigue state.
 pub struct Evaluator<'t> {
@@ -177,6 +182,21 @@ impl<'t> Evaluator<'t> {
                     });
                 }
                 p.hold(&mut self.state[h], f, dt);
+                let u = self.state[h].fatigue_u_min;
+                if u.is_nan() || u > MAX_FATIGUE_U_MIN {
+                    let hj = &self.task.half_joints[h];
+                    let since = self
+                        .events
+                        .iter()
+                        .rev()
+                        .find(|e| e.half_joint == hj.id)
+                        .map(|e| format!(" (it could no longer hold its load from {:.1} s)", e.t_s))
+                        .unwrap_or_default();
+                    return Err(implausible(format!(
+                        "the previous sample, held {dt:.1} s until this one, drives the fatigue index of the {} beyond {MAX_FATIGUE_U_MIN:e} min{since}: a load held that far past exhaustion has no meaning; the recording has a gap — add the samples in between or split it there",
+                        hj.group
+                    )));
+                }
                 if self.state[h].capacity < self.lowest.0 {
                     self.lowest = (self.state[h].capacity, h, s.t_s);
                 }

@@ -19,6 +19,19 @@ fn err(path: &Path, e: impl std::fmt::Display) -> PlotError {
     }
 }
 
+/// Writes the drawn figures through [`crate::io::OutputSet`] (regular files only, all or none).
+fn write_figures(figures: Vec<(PathBuf, String)>) -> Result<Vec<PathBuf>, PlotError> {
+    let mut set = crate::io::OutputSet::new();
+    for (path, svg) in &figures {
+        set.add("--plot", path, svg.clone().into_bytes());
+    }
+    set.write_all().map_err(|e| PlotError {
+        path: figures.first().map(|f| f.0.clone()).unwrap_or_default(),
+        message: e.to_string(),
+    })?;
+    Ok(figures.into_iter().map(|(p, _)| p).collect())
+}
+
 const GROUPS: [(&str, &[&str], &str); 4] = [
     ("general", &["general"], "General models"),
     ("shoulder", &["shoulder"], "Shoulder models"),
@@ -40,8 +53,9 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
             })
             .collect();
         let path = dir.join(format!("fig{}-met-{slug}.svg", 2 * i + 1));
+        let mut svg = String::new();
         {
-            let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
+            let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| err(&path, e))?;
             let mut chart = ChartBuilder::on(&root)
                 .caption(
@@ -103,12 +117,14 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
                 .map_err(|e| err(&path, e))?;
             root.present().map_err(|e| err(&path, e))?;
         }
-        out.push(path);
+        out.push((path, svg));
 
         let path = dir.join(format!("fig{}-icc-{slug}.svg", 2 * i + 2));
+
+        let mut svg = String::new();
         {
             let n = rows.len();
-            let root = SVGBackend::new(&path, (900, 500)).into_drawing_area();
+            let root = SVGBackend::with_string(&mut svg, (900, 500)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| err(&path, e))?;
             let mut chart = ChartBuilder::on(&root)
                 .caption(
@@ -152,9 +168,9 @@ pub fn static_figures(v: &StaticValidation, dir: &Path) -> Result<Vec<PathBuf>, 
                 .map_err(|e| err(&path, e))?;
             root.present().map_err(|e| err(&path, e))?;
         }
-        out.push(path);
+        out.push((path, svg));
     }
-    Ok(out)
+    write_figures(out)
 }
 
 /// Writes fig10 (Liu et al. at MVC vs the model) and an endurance-curve figure into `dir`.
@@ -162,8 +178,9 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
     std::fs::create_dir_all(dir).map_err(|e| err(dir, e))?;
     let mut out = Vec::new();
     let path = dir.join("fig10-liu-mvc.svg");
+    let mut svg = String::new();
     {
-        let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&path, e))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
@@ -217,11 +234,13 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
             .map_err(|e| err(&path, e))?;
         root.present().map_err(|e| err(&path, e))?;
     }
-    out.push(path);
+    out.push((path, svg));
 
     let path = dir.join("endurance-frey-law-avin.svg");
+
+    let mut svg = String::new();
     {
-        let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&path, e))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
@@ -276,6 +295,6 @@ pub fn dynamic_figures(v: &DynamicValidation, dir: &Path) -> Result<Vec<PathBuf>
             .map_err(|e| err(&path, e))?;
         root.present().map_err(|e| err(&path, e))?;
     }
-    out.push(path);
-    Ok(out)
+    out.push((path, svg));
+    write_figures(out)
 }

@@ -95,6 +95,13 @@ pub fn verdict(task: &Task, plan: &Plan, a: &Assessment) -> Finding {
                 ),
             )
         }
+        _ if m.exhaustion_verdict == "not_determined" => Finding::new(
+            Level::Warn,
+            format!(
+                "As far as fatigue goes, this worker can do the task; no muscle group gave out in the {} this pace was followed, but the capacities had not settled yet, so whether it can be kept up indefinitely is not determined. {left}",
+                dur(60.0 * m.minutes_followed)
+            ),
+        ),
         _ => Finding::new(
             Level::Ok,
             format!(
