@@ -1366,4 +1366,10 @@ fn exhaustion_not_reached_before_the_cycle_cap_is_not_determined_not_never() {
         other => panic!("unknown verdict {other}"),
     }
     assert_eq!(verdict, "not_determined", "{m}");
+    // the parameter variants say the same of the values' own variant (the text and the reports
+    // print "not determined (followed 33.3 min)" from it, not "never")
+    let u = &v["assessment"]["uncertainty"]["outcomes"][0];
+    assert_eq!(u["variant"], "values", "{u}");
+    assert_eq!(u["exhaustion_verdict"], "not_determined", "{u}");
+    assert_eq!(u["minutes_followed"], m["minutes_followed"], "{u}");
 }

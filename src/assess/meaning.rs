@@ -13,6 +13,21 @@ use crate::fatigue::{MaParams, MaState};
 use crate::plan::{Plan, Task};
 use serde::Serialize;
 
+/// Words for a pace no group gives out at within the time followed, by `exhaustion_verdict`:
+/// "never (settles)", or "not determined (followed N)" when the capacities had not settled yet.
+pub fn no_exhaustion_words(verdict: &str, minutes_followed: f64) -> String {
+    if verdict == "not_determined" {
+        let h = minutes_followed / 60.0;
+        if h >= 1.0 {
+            format!("not determined (followed {h:.0} h)")
+        } else {
+            format!("not determined (followed {minutes_followed:.1} min)")
+        }
+    } else {
+        "never (settles)".into()
+    }
+}
+
 /// The meaning of a plan's fatigue.
 #[derive(Debug, Clone, Serialize)]
 pub struct Meaning {
@@ -233,4 +248,22 @@ pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
     }
     r.final_capacity = state.iter().map(|s| s.capacity).collect();
     r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::no_exhaustion_words;
+
+    #[test]
+    fn a_null_time_is_never_only_when_the_verdict_says_so() {
+        assert_eq!(no_exhaustion_words("never", 1e4), "never (settles)");
+        assert_eq!(
+            no_exhaustion_words("not_determined", 2000.0 / 60.0),
+            "not determined (followed 33.3 min)"
+        );
+        assert_eq!(
+            no_exhaustion_words("not_determined", 7.0 * 24.0 * 60.0),
+            "not determined (followed 168 h)"
+        );
+    }
 }

@@ -74,8 +74,11 @@ pub fn variant_params(task: &Task, variant: &Variant) -> Option<Vec<MaParams>> {
 #[derive(Debug, Clone, Serialize)]
 pub struct Outcome {
     pub variant: &'static str,
-    /// Minutes until a group gives out at the task's pace (`None`: never within a week).
+    /// Minutes until a group gives out at the task's pace (`None`: read `exhaustion_verdict`).
     pub minutes_to_exhaustion: Option<f64>,
+    /// As the plan's `meaning.exhaustion_verdict`, and how long the pace was followed \[min\].
+    pub exhaustion_verdict: &'static str,
+    pub minutes_followed: f64,
     /// Whether a group is exhausted within the planned task.
     pub exhausted_in_task: bool,
     /// Lowest capacity at any time of the task, and whose.
@@ -112,6 +115,8 @@ pub fn outcome(
     Outcome {
         variant: variant.name,
         minutes_to_exhaustion: m.minutes_to_exhaustion,
+        exhaustion_verdict: m.exhaustion_verdict,
+        minutes_followed: m.minutes_followed,
         exhausted_in_task: r.exhaustion.is_some(),
         lowest_capacity: r.lowest_capacity,
         lowest_capacity_group: task.half_joints[r.lowest_half_joint].group.clone(),

@@ -10,7 +10,6 @@
 //! other hand's path (for the generated worker: hands, forearms, upper arms, shoulders).
 
 use super::posture::Scene;
-use super::result::Plan;
 use super::task::{Phase, Task};
 use crate::body::{StaticsData, forward_kinematics};
 use crate::workstation::{ObstacleSpec, ShapeSpec, Workstation};
@@ -19,7 +18,7 @@ use std::collections::HashSet;
 pub use super::planner::OBJECT_CONTACT_TOL_M;
 
 /// Rigid bodies of the arms: on one hand's path to the root but not on the other's.
-fn arm_bodies(t: &Task) -> HashSet<usize> {
+pub(crate) fn arm_bodies(t: &Task) -> HashSet<usize> {
     let m = &t.model;
     let path = |link: usize| {
         let mut b = m.link_in_body[link].body;
@@ -49,7 +48,7 @@ pub fn object_body_overlap(t: &Task, ph: &Phase, q_rad: &[f64]) -> Option<(f64, 
     overlap(t, &Scene::new(t), &arm_bodies(t), ph, q_rad)
 }
 
-fn overlap(
+pub(crate) fn overlap(
     t: &Task,
     scene: &Scene,
     arms: &HashSet<usize>,
@@ -88,33 +87,5 @@ fn overlap(
             }
         }
     }
-    deepest.map(|(d, l)| (d, link_words(&m.links[l].name)))
-}
-
-/// A link's name in words: "l_upper_arm" → "left upper arm" (the generated worker's side
-/// prefixes; other names only lose their underscores).
-fn link_words(name: &str) -> String {
-    let (side, rest) = match (name.strip_prefix("r_"), name.strip_prefix("l_")) {
-        (Some(r), _) => ("right ", r),
-        (_, Some(r)) => ("left ", r),
-        _ => ("", name),
-    };
-    format!("{side}{}", rest.replace('_', " "))
-}
-
-/// Marks every phase of `plan` whose held object lies inside the body (see the module docs) as
-/// a collision of that phase, unless a deeper one is already reported.
-pub fn mark_object_body_collisions(t: &Task, plan: &mut Plan) {
-    if t.phases.iter().all(|p| p.object.is_none()) {
-        return;
-    }
-    let (scene, arms) = (Scene::new(t), arm_bodies(t));
-    for (ph, s) in t.phases.iter().zip(plan.summary.phases.iter_mut()) {
-        if let Some((d, link)) = overlap(t, &scene, &arms, ph, &s.q_rad)
-            && d < s.min_clearance_m
-        {
-            s.min_clearance_m = d;
-            s.closest = Some(format!("held object ↔ {link}"));
-        }
-    }
+    deepest.map(|(d, l)| (d, super::planner::link_words(&m.links[l].name)))
 }

@@ -21,20 +21,6 @@ pub mod search;
 pub mod sqp;
 pub mod task;
 
-pub use planner::{PlanError, PlanOptions, Planner};
-
-/// Plans a task with the default options (adaptive, discomfort on, baselines); a held object
-/// inside the body is a collision of its phase ([`held`]).
-pub fn plan_task(task: &Task) -> Result<Plan, PlanError> {
-    plan_task_with(task, PlanOptions::default())
-}
-
-/// Plans a task with the given options ([`planner::plan_task_with`]), then checks each phase's
-/// held object against the body ([`held::mark_object_body_collisions`]).
-pub fn plan_task_with(task: &Task, opts: PlanOptions) -> Result<Plan, PlanError> {
-    let mut plan = planner::plan_task_with(task, opts)?;
-    held::mark_object_body_collisions(task, &mut plan);
-    Ok(plan)
-}
+pub use planner::{PlanError, PlanOptions, Planner, plan_task, plan_task_with};
 pub use result::Plan;
 pub use task::{Task, TaskError, TaskFile};

@@ -683,6 +683,7 @@ impl<'t> Planner<'t> {
     ) -> Vec<PhaseSummary> {
         let t = self.task;
         let d = Discomfort::new(t);
+        let arms = super::held::arm_bodies(t);
         (0..t.phases.len())
             .map(|p| {
                 let g = self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0);
@@ -725,6 +726,14 @@ impl<'t> Planner<'t> {
                     }
                     _ => (sol.min_clearance_m, closest),
                 };
+                // ... and one inside the worker's own body (arms excepted) too.
+                let (min_clearance_m, closest) =
+                    match super::held::overlap(t, &self.solver.scene, &arms, ph, q) {
+                        Some((d, link)) if d < min_clearance_m => {
+                            (d, Some(format!("held object ↔ {link}")))
+                        }
+                        _ => (min_clearance_m, closest),
+                    };
                 PhaseSummary {
                     phase: ph.name.clone(),
                     q_rad: q.clone(),
@@ -784,7 +793,7 @@ pub fn object_overlap(t: &Task, ph: &super::task::Phase) -> Option<(f64, String)
 
 /// A link's name in words: "l_upper_arm" → "left upper arm" (the side prefixes of the
 /// generated worker; other names only lose their underscores).
-fn link_words(name: &str) -> String {
+pub(crate) fn link_words(name: &str) -> String {
     let (side, rest) = match (name.strip_prefix("r_"), name.strip_prefix("l_")) {
         (Some(r), _) => ("right ", r),
         (_, Some(r)) => ("left ", r),

@@ -266,7 +266,10 @@ pub fn sensitivity_table(u: &crate::assess::uncertainty::Sensitivity) -> String 
             match (v.minutes_to_exhaustion, v.exhausted_in_task) {
                 (_, true) => "within the task".to_string(),
                 (Some(m), false) => format!("{m:.0} min"),
-                (None, false) => "never".to_string(),
+                (None, false) => crate::assess::meaning::no_exhaustion_words(
+                    v.exhaustion_verdict,
+                    v.minutes_followed,
+                ),
             },
             format!("{:.2}", v.lowest_capacity),
             v.rest_needed_s

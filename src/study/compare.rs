@@ -16,6 +16,7 @@
 //! same table and document as one run.
 
 use super::shard::Shard;
+use crate::assess::meaning::no_exhaustion_words;
 use crate::assess::{Assessment, assess};
 use crate::plan::result::Exhaustion;
 use crate::plan::{Plan, PlanError, PlanOptions, Task, plan_task_with};
@@ -30,6 +31,9 @@ pub struct VariantFigures {
     pub variant: String,
     pub exhausted_in_task: bool,
     pub minutes_to_exhaustion: Option<f64>,
+    /// As the plan's `meaning.exhaustion_verdict`, and how long the pace was followed \[min\].
+    pub exhaustion_verdict: String,
+    pub minutes_followed: f64,
     pub lowest_capacity: f64,
     pub rest_needed_s: Option<f64>,
 }
@@ -64,8 +68,12 @@ pub struct LayoutOutcome {
     pub lowest_capacity_group: String,
     pub lowest_capacity_t_s: f64,
     pub exhaustion: Option<Exhaustion>,
-    /// Minutes until a group gives out at this pace (`None`: never within a week).
+    /// Minutes until a group gives out at this pace (`None`: read `exhaustion_verdict`).
     pub minutes_to_exhaustion: Option<f64>,
+    /// As the plan's `meaning.exhaustion_verdict` ("gives_out", "never", "not_determined"),
+    /// and how long the pace was followed \[min\].
+    pub exhaustion_verdict: String,
+    pub minutes_followed: f64,
     /// Largest share of a rested muscle's endurance one hold uses.
     pub endurance_share: f64,
     pub rula_max: Option<i32>,
@@ -172,6 +180,8 @@ pub fn outcome(
                     variant: o.variant.to_string(),
                     exhausted_in_task: o.exhausted_in_task,
                     minutes_to_exhaustion: o.minutes_to_exhaustion,
+                    exhaustion_verdict: o.exhaustion_verdict.to_string(),
+                    minutes_followed: o.minutes_followed,
                     lowest_capacity: o.lowest_capacity,
                     rest_needed_s: o.rest_needed_s,
                 })
@@ -207,6 +217,8 @@ pub fn outcome(
         lowest_capacity_t_s: s.lowest_capacity_t_s,
         exhaustion: s.exhaustion.clone(),
         minutes_to_exhaustion: a.meaning.minutes_to_exhaustion,
+        exhaustion_verdict: a.meaning.exhaustion_verdict.to_string(),
+        minutes_followed: a.meaning.minutes_followed,
         endurance_share: a.meaning.endurance_share,
         rula_max: a.rula_max,
         reba_max: a.reba_max,
@@ -381,6 +393,12 @@ pub fn verdict(o: &LayoutOutcome) -> String {
             Some(m) => format!(
                 "no exhaustion in the task; kept up, the first group gives out after {:.1} h; lowest capacity {:.0} % ({})",
                 m / 60.0,
+                100.0 * o.lowest_capacity,
+                o.lowest_capacity_group
+            ),
+            None if o.exhaustion_verdict == "not_determined" => format!(
+                "no exhaustion in the task; kept up, {}; lowest capacity {:.0} % ({})",
+                no_exhaustion_words(&o.exhaustion_verdict, o.minutes_followed),
                 100.0 * o.lowest_capacity,
                 o.lowest_capacity_group
             ),
@@ -594,7 +612,7 @@ pub fn comparison_table(c: &Comparison) -> String {
         "time to exhaustion at this pace",
         &|o| match o.minutes_to_exhaustion {
             Some(m) => format!("{:.1} h", m / 60.0),
-            None => "never (sustainable)".into(),
+            None => no_exhaustion_words(&o.exhaustion_verdict, o.minutes_followed),
         },
     );
     row("lowest capacity (any time)", &|o| {

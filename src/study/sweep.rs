@@ -209,7 +209,11 @@ pub struct WorkerOutcome {
     /// Lowest capacity at any time of the task, and whose.
     pub lowest_capacity: f64,
     pub lowest_capacity_group: String,
+    /// Minutes until a group gives out at this pace (`None`: read `exhaustion_verdict`).
     pub minutes_to_exhaustion: Option<f64>,
+    /// As the plan's `meaning.exhaustion_verdict`, and how long the pace was followed \[min\].
+    pub exhaustion_verdict: String,
+    pub minutes_followed: f64,
     pub exhaustion: Option<Exhaustion>,
     pub rula_max: Option<i32>,
     pub reba_max: Option<u8>,
@@ -457,6 +461,8 @@ pub fn one(
         lowest_capacity: s.lowest_capacity,
         lowest_capacity_group: group(&s.lowest_capacity_half_joint),
         minutes_to_exhaustion: a.meaning.minutes_to_exhaustion,
+        exhaustion_verdict: a.meaning.exhaustion_verdict.to_string(),
+        minutes_followed: a.meaning.minutes_followed,
         exhaustion: s.exhaustion.clone(),
         rula_max: a.rula_max,
         reba_max: a.reba_max,
@@ -702,6 +708,13 @@ pub fn sweep_table(s: &Sweep) -> String {
                             } else {
                                 format!("{:.1} h", m / 60.0)
                             }
+                        ),
+                        None if w.exhaustion_verdict == "not_determined" => format!(
+                            "can do it (kept up: {})",
+                            crate::assess::meaning::no_exhaustion_words(
+                                &w.exhaustion_verdict,
+                                w.minutes_followed
+                            )
                         ),
                         None => "can do it (sustainable)".to_string(),
                     }

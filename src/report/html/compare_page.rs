@@ -161,7 +161,15 @@ fn ranking_tables(c: &Comparison) -> String {
                     esc(&o.lowest_capacity_group),
                     dur(o.lowest_capacity_t_s)
                 ),
-                opt(o.minutes_to_exhaustion, |m| dur(60.0 * m)).replace(DASH, "never (settles)"),
+                o.minutes_to_exhaustion.map_or_else(
+                    || {
+                        crate::assess::meaning::no_exhaustion_words(
+                            &o.exhaustion_verdict,
+                            o.minutes_followed,
+                        )
+                    },
+                    |m| dur(60.0 * m),
+                ),
                 pct(o.endurance_share),
             ],
         );
@@ -345,6 +353,12 @@ fn card(
             match (o.minutes_to_exhaustion, &m.first_to_give_out) {
                 (Some(x), Some(g)) => format!("{} (the {})", dur(60.0 * x), esc(g)),
                 (Some(x), None) => dur(60.0 * x),
+                _ if o.exhaustion_verdict == "not_determined" => {
+                    crate::assess::meaning::no_exhaustion_words(
+                        &o.exhaustion_verdict,
+                        o.minutes_followed,
+                    )
+                }
                 _ => "never: every group settles above its loads".into(),
             },
         ),

@@ -813,7 +813,10 @@ fn uncertainty_section(plan: &Plan, task: &Task, a: &Assessment) -> String {
                         format!("{} (within the task)", dur(60.0 * m))
                     }
                     Some(m) => dur(60.0 * m),
-                    None => "never (settles)".into(),
+                    None => crate::assess::meaning::no_exhaustion_words(
+                        o.exhaustion_verdict,
+                        o.minutes_followed,
+                    ),
                 },
                 format!(
                     "{} ({})",

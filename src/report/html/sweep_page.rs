@@ -32,6 +32,16 @@ fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
                     dur(60.0 * m)
                 ),
             ),
+            None if w.exhaustion_verdict == "not_determined" => (
+                Level::Warn,
+                format!(
+                    "can do it; kept up, {}",
+                    crate::assess::meaning::no_exhaustion_words(
+                        &w.exhaustion_verdict,
+                        w.minutes_followed
+                    )
+                ),
+            ),
             None => (Level::Ok, "can do it, indefinitely at this pace".into()),
         }
     } else {
