@@ -150,6 +150,8 @@ fn outcome(
         lowest_capacity: 0.42,
         lowest_capacity_group: "right shoulder flexors".into(),
         minutes_to_exhaustion: if index == 0 { None } else { Some(95.0) },
+        exhaustion_verdict: if index == 0 { "never" } else { "gives_out" }.into(),
+        minutes_followed: if index == 0 { 7.0 * 24.0 * 60.0 } else { 95.0 },
         exhaustion,
         rula_max: Some(5),
         reba_max: None,
