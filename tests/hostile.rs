@@ -922,6 +922,1076 @@ fn mutants_of_the_shipped_tasks_are_checked_or_refused() {
 }
 
 // ================================================================================================
+// Generated mutants of the shipped robot: XML-level mutations of robots/worker.urdf and YAML
+// mutations of robots/worker.strength.yaml, read through a small task that names the robot
+// ================================================================================================
+
+/// An attribute of an XML start tag: the value's byte span, its tag and its owner (the enclosing
+/// `<link>` or `<joint>`).
+struct XmlAttr {
+    owner: String,
+    tag: String,
+    name: String,
+    start: usize,
+    end: usize,
+}
+
+/// An element's byte span (start tag to end tag, or the self-closing tag).
+struct XmlElem {
+    owner: String,
+    tag: String,
+    start: usize,
+    end: usize,
+}
+
+/// The start tags' attributes and the elements of an XML text (enough for the shipped URDF:
+/// double-quoted attribute values, comments, no CDATA).
+fn xml_scan(text: &str) -> (Vec<XmlAttr>, Vec<XmlElem>) {
+    let b = text.as_bytes();
+    let (mut attrs, mut elems) = (Vec::new(), Vec::new());
+    let mut owner = String::from("robot");
+    let mut i = 0;
+    while let Some(off) = text[i..].find('<') {
+        let s = i + off;
+        if text[s..].starts_with("<!--") {
+            i = s + text[s..].find("-->").map_or(text.len() - s, |e| e + 3);
+            continue;
+        }
+        if text[s..].starts_with("<?") || text[s..].starts_with("</") || text[s..].starts_with("<!")
+        {
+            i = s + 1;
+            continue;
+        }
+        let gt = s + text[s..].find('>').expect("a closed tag");
+        let inner = &text[s + 1..gt];
+        let tag_len = inner
+            .find(|c: char| c.is_whitespace() || c == '/')
+            .unwrap_or(inner.len());
+        let tag = inner[..tag_len].to_string();
+        // attributes
+        let mut j = s + 1 + tag_len;
+        let mut name_attr = None;
+        while j < gt {
+            while j < gt && (b[j].is_ascii_whitespace() || b[j] == b'/') {
+                j += 1;
+            }
+            if j >= gt {
+                break;
+            }
+            let eq = j + text[j..gt].find('=').expect("name=value");
+            let name = text[j..eq].trim().to_string();
+            let q1 = eq + 1 + text[eq + 1..gt].find('"').expect("a quoted value");
+            let q2 = q1 + 1 + text[q1 + 1..gt].find('"').expect("a closing quote");
+            if name == "name" {
+                name_attr = Some(text[q1 + 1..q2].to_string());
+            }
+            attrs.push(XmlAttr {
+                owner: String::new(),
+                tag: tag.clone(),
+                name,
+                start: q1 + 1,
+                end: q2,
+            });
+            j = q2 + 1;
+        }
+        if tag == "link" || tag == "joint" {
+            owner = format!("{tag} {}", name_attr.unwrap_or_default());
+        }
+        let n = attrs.len();
+        for a in attrs.iter_mut().rev() {
+            if !a.owner.is_empty() {
+                break;
+            }
+            a.owner = owner.clone();
+        }
+        let _ = n;
+        let end = if b[gt - 1] == b'/' {
+            gt + 1
+        } else {
+            // the matching end tag, counting nested elements of the same name
+            let (open, close) = (format!("<{tag}"), format!("</{tag}>"));
+            let mut depth = 1;
+            let mut k = gt + 1;
+            loop {
+                let o = text[k..].find(&open).map(|x| k + x);
+                let c = k + text[k..].find(&close).expect("an end tag");
+                match o {
+                    Some(o)
+                        if o < c
+                            && matches!(b[o + open.len()], b' ' | b'>' | b'/' | b'\n' | b'\t') =>
+                    {
+                        let ogt = o + text[o..].find('>').unwrap();
+                        if b[ogt - 1] != b'/' {
+                            depth += 1;
+                        }
+                        k = ogt + 1;
+                    }
+                    _ => {
+                        depth -= 1;
+                        k = c + close.len();
+                        if depth == 0 {
+                            break k;
+                        }
+                    }
+                }
+            }
+        };
+        elems.push(XmlElem {
+            owner: owner.clone(),
+            tag,
+            start: s,
+            end,
+        });
+        i = gt + 1;
+    }
+    (attrs, elems)
+}
+
+fn splice(text: &str, start: usize, end: usize, with: &str) -> String {
+    format!("{}{with}{}", &text[..start], &text[end..])
+}
+
+/// Mutants of a URDF text (see the README for the operators); `per_attr` numeric operators per
+/// numeric attribute.
+fn urdf_mutants(label: &str, text: &str, per_attr: usize) -> Vec<Mutant> {
+    let (attrs, elems) = xml_scan(text);
+    let mut out = Vec::new();
+    let mut push = |id: String, s: String| {
+        out.push(Mutant {
+            id: format!("{label} {id}"),
+            bytes: s.into_bytes(),
+        })
+    };
+    const VALUES: &[(&str, &str)] = &[
+        ("0", "0"),
+        ("-1", "-1"),
+        ("1e300", "1e300"),
+        ("-1e300", "-1e300"),
+        ("1e-300", "1e-300"),
+        ("nan", "nan"),
+        ("inf", "inf"),
+        ("-inf", "-inf"),
+        ("", "empty"),
+        ("abc", "text"),
+        ("0x10", "hex"),
+        ("1e", "cut-exponent"),
+    ];
+    let numeric = |v: &str| {
+        let t: Vec<&str> = v.split_whitespace().collect();
+        !t.is_empty() && t.iter().all(|x| x.parse::<f64>().is_ok())
+    };
+    for a in &attrs {
+        let v = &text[a.start..a.end];
+        if !numeric(v) || a.name == "name" {
+            continue;
+        }
+        let at = format!("{} <{} {}>", a.owner, a.tag, a.name);
+        let toks: Vec<&str> = v.split_whitespace().collect();
+        let mut ops: Vec<(String, String)> = VALUES
+            .iter()
+            .map(|(x, l)| {
+                if toks.len() > 1 && !matches!(*l, "empty" | "text") {
+                    let k = (fnv(&at) % toks.len() as u64) as usize;
+                    let mut t = toks.clone();
+                    t[k] = x;
+                    (t.join(" "), format!("{l}@{k}"))
+                } else {
+                    (x.to_string(), l.to_string())
+                }
+            })
+            .collect();
+        if toks.len() > 1 {
+            ops.push((toks[..toks.len() - 1].join(" "), "too-few-numbers".into()));
+            ops.push((format!("{v} 0"), "too-many-numbers".into()));
+        }
+        for i in choose(ops.len(), per_attr, &at) {
+            push(
+                format!("{at} {}", ops[i].1),
+                splice(text, a.start, a.end, &ops[i].0),
+            );
+        }
+        // physically absurd values, always tried
+        let absurd: &[(&str, &str)] = match (a.tag.as_str(), a.name.as_str()) {
+            ("mass", "value") => &[("1e6", "huge-mass"), ("-5", "negative-mass")],
+            ("inertia", "ixx") => &[("-1", "negative-inertia"), ("1e30", "huge-inertia")],
+            ("limit", "effort") => &[("1e300", "huge-effort"), ("-100", "negative-effort")],
+            ("limit", "upper") => &[("1e300", "huge-upper"), ("inf", "infinite-upper")],
+            _ => &[],
+        };
+        for (x, l) in absurd {
+            push(format!("{at} {l}"), splice(text, a.start, a.end, x));
+        }
+    }
+    // limits with lower > upper
+    for e in elems.iter().filter(|e| e.tag == "limit") {
+        let find = |n: &str| {
+            attrs
+                .iter()
+                .find(|a| a.start > e.start && a.end < e.end && a.name == n)
+                .unwrap()
+        };
+        let (lo, up) = (find("lower"), find("upper"));
+        let (lv, uv) = (&text[lo.start..lo.end], &text[up.start..up.end]);
+        let s = format!(
+            "{}{uv}{}{lv}{}",
+            &text[..lo.start],
+            &text[lo.end..up.start],
+            &text[up.end..]
+        );
+        push(format!("{} <limit> lower-above-upper", e.owner), s);
+    }
+    // joints: zero axis, missing parent/child link, own parent, cycles, duplicated names, types
+    let joints: Vec<&XmlElem> = elems.iter().filter(|e| e.tag == "joint").collect();
+    let links: Vec<&XmlElem> = elems.iter().filter(|e| e.tag == "link").collect();
+    let attr_in = |e: &XmlElem, tag: &str, name: &str| {
+        attrs
+            .iter()
+            .find(|a| a.start > e.start && a.end < e.end && a.tag == tag && a.name == name)
+    };
+    for (ji, j) in joints.iter().enumerate() {
+        let who = &j.owner;
+        if let Some(ax) = attr_in(j, "axis", "xyz") {
+            push(
+                format!("{who} <axis> zero-axis"),
+                splice(text, ax.start, ax.end, "0 0 0"),
+            );
+        }
+        let p = attr_in(j, "parent", "link").unwrap();
+        let c = attr_in(j, "child", "link").unwrap();
+        let child_name = &text[c.start..c.end];
+        let mut structural = vec![
+            (
+                "missing-parent-link",
+                splice(text, p.start, p.end, "no_such_link"),
+            ),
+            (
+                "missing-child-link",
+                splice(text, c.start, c.end, "no_such_link"),
+            ),
+            ("own-parent", splice(text, p.start, p.end, child_name)),
+            ("child-is-root-cycle", splice(text, c.start, c.end, "floor")),
+        ];
+        // the parent is a link further down the same chain: a loop cut off from the root
+        let later = &joints[(ji + 3).min(joints.len() - 1)];
+        let lc = attr_in(later, "child", "link").unwrap();
+        structural.push((
+            "parent-is-descendant-cycle",
+            splice(text, p.start, p.end, &text[lc.start..lc.end]),
+        ));
+        let nm = attr_in(j, "joint", "name").unwrap();
+        let other = attr_in(joints[(ji + 1) % joints.len()], "joint", "name").unwrap();
+        structural.push((
+            "duplicated-joint-name",
+            splice(text, nm.start, nm.end, &text[other.start..other.end]),
+        ));
+        let ty = attr_in(j, "joint", "type").unwrap();
+        for t in [
+            "floating",
+            "planar",
+            "revolve",
+            "fixed",
+            "continuous",
+            "prismatic",
+        ] {
+            if &text[ty.start..ty.end] != t {
+                structural.push((
+                    match t {
+                        "floating" => "type-floating",
+                        "planar" => "type-planar",
+                        "revolve" => "type-unknown",
+                        "fixed" => "type-fixed",
+                        "continuous" => "type-continuous",
+                        _ => "type-prismatic",
+                    },
+                    splice(text, ty.start, ty.end, t),
+                ));
+            }
+        }
+        for (l, s) in structural {
+            push(format!("{who} {l}"), s);
+        }
+    }
+    for (li, l) in links.iter().enumerate() {
+        let nm = attr_in(l, "link", "name").unwrap();
+        let other = attr_in(links[(li + 1) % links.len()], "link", "name").unwrap();
+        push(
+            format!("{} duplicated-link-name", l.owner),
+            splice(text, nm.start, nm.end, &text[other.start..other.end]),
+        );
+    }
+    // elements removed; unknown and broken geometry
+    for e in &elems {
+        if matches!(
+            e.tag.as_str(),
+            "inertial"
+                | "origin"
+                | "limit"
+                | "collision"
+                | "geometry"
+                | "axis"
+                | "mass"
+                | "inertia"
+                | "parent"
+                | "child"
+                | "cylinder"
+                | "box"
+        ) {
+            let at = format!("{} <{}>@{}", e.owner, e.tag, e.start);
+            push(format!("{at} removed"), splice(text, e.start, e.end, ""));
+        }
+        if matches!(e.tag.as_str(), "cylinder" | "box") {
+            let at = format!("{} <{}>", e.owner, e.tag);
+            for (l, w) in [
+                (
+                    "unknown-geometry-tag",
+                    "<cone radius=\"0.1\" length=\"0.2\"/>",
+                ),
+                ("mesh-geometry", "<mesh filename=\"nothing.stl\"/>"),
+                ("zero-sphere", "<sphere radius=\"0\"/>"),
+                (
+                    "two-shapes",
+                    "<sphere radius=\"0.1\"/><box size=\"0.1 0.1 0.1\"/>",
+                ),
+                ("capsule", "<capsule radius=\"0.05\" length=\"0.2\"/>"),
+            ] {
+                push(format!("{at} {l}"), splice(text, e.start, e.end, w));
+            }
+        }
+    }
+    // whole-file mutants
+    let robot_end = text.rfind("</robot>").unwrap();
+    let whole: Vec<(&str, Vec<u8>)> = vec![
+        ("empty-file", Vec::new()),
+        ("truncated-half", text.as_bytes()[..text.len() / 2].to_vec()),
+        ("not-xml", b"robot: worker\nlinks: []\n".to_vec()),
+        (
+            "non-utf8",
+            [text.as_bytes(), b"<!-- \xff\xfe -->\n"].concat(),
+        ),
+        (
+            "bom-crlf",
+            [
+                b"\xef\xbb\xbf".as_slice(),
+                text.replace('\n', "\r\n").as_bytes(),
+            ]
+            .concat(),
+        ),
+        (
+            "no-links",
+            "<?xml version=\"1.0\"?>\n<robot name=\"empty\">\n</robot>\n".into(),
+        ),
+        (
+            "unknown-elements",
+            splice(
+                text,
+                robot_end,
+                robot_end,
+                "<gazebo><plugin name=\"x\"/></gazebo><transmission name=\"t\"/>\n",
+            )
+            .into_bytes(),
+        ),
+        (
+            "deep-nesting",
+            splice(
+                text,
+                robot_end,
+                robot_end,
+                &format!(
+                    "{}{}",
+                    "<gazebo>".repeat(50_000),
+                    "</gazebo>".repeat(50_000)
+                ),
+            )
+            .into_bytes(),
+        ),
+        ("entity-expansion", {
+            let mut s = String::from(
+                "<?xml version=\"1.0\"?>\n<!DOCTYPE robot [\n<!ENTITY a0 \"xxxxxxxxxx\">\n",
+            );
+            for i in 1..8 {
+                s.push_str(&format!(
+                    "<!ENTITY a{i} \"{}\">\n",
+                    format!("&a{};", i - 1).repeat(10)
+                ));
+            }
+            s.push_str("]>\n");
+            s.push_str(&text[text.find("<robot").unwrap()..].replacen(
+                "name=\"worker\"",
+                "name=\"&a7;\"",
+                1,
+            ));
+            s.into_bytes()
+        }),
+        (
+            "megabyte-attribute",
+            text.replacen(
+                "<robot name=\"worker\"",
+                &format!("<robot name=\"{}\"", "w".repeat(1 << 20)),
+                1,
+            )
+            .into_bytes(),
+        ),
+        (
+            "second-robot",
+            format!("{text}<robot name=\"again\"><link name=\"x\"/></robot>\n").into_bytes(),
+        ),
+        (
+            "generated-for-nan",
+            text.replacen("stature 1.755 m", "stature nan m", 1)
+                .into_bytes(),
+        ),
+        (
+            "generated-for-other-worker",
+            text.replacen("mass 78 kg", "mass 1e300 kg", 1).into_bytes(),
+        ),
+    ];
+    for (l, b) in whole {
+        out.push(Mutant {
+            id: format!("{label} <file> {l}"),
+            bytes: b,
+        });
+    }
+    out
+}
+
+/// Keeps about `max` of the mutants, chosen by the hash of their ids (deterministic), always
+/// keeping whole-file mutants.
+fn sample(mutants: Vec<Mutant>, max: usize) -> Vec<Mutant> {
+    if mutants.len() <= max {
+        return mutants;
+    }
+    let keep =
+        |m: &Mutant| m.id.contains("<file>") || fnv(&m.id) % (mutants.len() as u64) < max as u64;
+    let kept: Vec<bool> = mutants.iter().map(keep).collect();
+    mutants
+        .into_iter()
+        .zip(kept)
+        .filter_map(|(m, k)| k.then_some(m))
+        .collect()
+}
+
+/// Words a message about a URDF or strength table may name (elements, attributes, fields).
+fn robot_field_words() -> Vec<String> {
+    [
+        "link",
+        "joint",
+        "robot",
+        "inertial",
+        "origin",
+        "mass",
+        "inertia",
+        "axis",
+        "limit",
+        "parent",
+        "child",
+        "collision",
+        "geometry",
+        "cylinder",
+        "box",
+        "sphere",
+        "capsule",
+        "mesh",
+        "half_joints",
+        "unactuated",
+        "direction",
+        "group",
+        "region",
+        "male",
+        "female",
+        "mean_nm",
+        "sd_nm",
+        "posture",
+        "deg",
+        "factor",
+        "reference_posture",
+        "source",
+        "unknown field",
+        "missing field",
+        "duplicate",
+        "hand_frame",
+        "stance",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect()
+}
+
+/// A small task that names robot `mNNNNN.urdf` (the quick task's worker and phase).
+fn robot_task(name: &str) -> String {
+    format!(
+        "name: robot mutant\nworker: {{sex: male, stature_m: 1.755, mass_kg: 78.0, strength_percentile: 50}}\nrobot: {name}.urdf\nphases:\n  - {{name: hold, target_m: [0.35, -0.2, 1.0], load_kg: 2.0, duration_s: 5.0}}\nrest_s: 5.0\ncycles: 2\n"
+    )
+}
+
+fn link_or_copy(from: &Path, to: &Path) {
+    if std::fs::hard_link(from, to).is_err() {
+        std::fs::copy(from, to).unwrap();
+    }
+}
+
+/// Validation-only cases for robot mutants: each mutant gets `sub/mNNNNN.urdf`,
+/// `sub/mNNNNN.strength.yaml` and the task `sub/mNNNNN.yaml`; the mutated file is the one an
+/// exit-2 message must name.
+fn robot_cases(dir: &Path, sub: &str, urdf: &[Mutant], strength: &[Mutant]) -> Vec<Case> {
+    let d = dir.join(sub);
+    std::fs::create_dir_all(&d).unwrap();
+    let (u0, s0) = (d.join("shipped.urdf"), d.join("shipped.strength.yaml"));
+    std::fs::copy(root().join("robots/worker.urdf"), &u0).unwrap();
+    std::fs::copy(root().join("robots/worker.strength.yaml"), &s0).unwrap();
+    let fields = robot_field_words();
+    let mut cases = Vec::new();
+    for (i, (m, is_urdf)) in urdf
+        .iter()
+        .map(|m| (m, true))
+        .chain(strength.iter().map(|m| (m, false)))
+        .enumerate()
+    {
+        let stem = format!("m{i:05}");
+        let (u, s) = (
+            d.join(format!("{stem}.urdf")),
+            d.join(format!("{stem}.strength.yaml")),
+        );
+        if is_urdf {
+            std::fs::write(&u, &m.bytes).unwrap();
+            link_or_copy(&s0, &s);
+        } else {
+            link_or_copy(&u0, &u);
+            std::fs::write(&s, &m.bytes).unwrap();
+        }
+        std::fs::write(d.join(format!("{stem}.yaml")), robot_task(&stem)).unwrap();
+        cases.push(Case {
+            id: m.id.clone(),
+            args: vec![
+                "plan".into(),
+                format!("{sub}/{stem}.yaml"),
+                "--csv".into(),
+                "no_such_dir/x.csv".into(),
+            ],
+            cwd: dir.to_path_buf(),
+            stdin: None,
+            timeout: T_CHECK,
+            file: if is_urdf {
+                format!("{stem}.urdf")
+            } else {
+                format!("{stem}.strength.yaml")
+            },
+            fields: fields.clone(),
+            accepted_marker: Some("no_such_dir".into()),
+        });
+    }
+    cases
+}
+
+#[test]
+fn mutants_of_the_shipped_robot_plan_or_are_refused() {
+    let dir = tempdir();
+    let urdf_text = std::fs::read_to_string(root().join("robots/worker.urdf")).unwrap();
+    let strength_text =
+        std::fs::read_to_string(root().join("robots/worker.strength.yaml")).unwrap();
+    let urdf = sample(
+        urdf_mutants("robots/worker.urdf", &urdf_text, 2),
+        ROBOT_URDF_MAX,
+    );
+    let strength = sample(
+        yaml_mutants("robots/worker.strength.yaml", &strength_text, 1),
+        ROBOT_STRENGTH_MAX,
+    );
+    let (nu, ns) = (urdf.len(), strength.len());
+    let cases = robot_cases(dir.path(), "robot", &urdf, &strength);
+    let outcomes = run_cases(cases.iter().map(clone_case).collect());
+    // plan a handful of the accepted ones for real
+    let mut plan_cases = Vec::new();
+    for (has, end) in ROBOT_PLAN_PICKS {
+        if plan_cases.len() >= 7 {
+            break;
+        }
+        if let Some(i) = outcomes.iter().position(|o| {
+            matches!(o.verdict, Ok(Verdict::Accepted)) && o.id.contains(has) && o.id.ends_with(end)
+        }) {
+            let c = &cases[i];
+            plan_cases.push(Case {
+                id: format!("{} [planned]", c.id),
+                args: vec![
+                    "plan".into(),
+                    c.args[1].clone(),
+                    "--no-adapt".into(),
+                    "--json".into(),
+                ],
+                timeout: T_PLAN,
+                accepted_marker: None,
+                ..clone_case(c)
+            });
+        }
+    }
+    let planned = run_cases(plan_cases);
+    assert!(
+        planned.len() >= 4,
+        "too few accepted robot mutants to plan: {}",
+        planned.len()
+    );
+    eprintln!(
+        "robot mutants: {nu} of the URDF, {ns} of the strength table, {} planned",
+        planned.len()
+    );
+    let mut all = outcomes;
+    all.extend(planned);
+    assert_outcomes("robot mutants", &all);
+}
+
+/// At most this many URDF mutants and strength-table mutants are run (sampled by id hash).
+const ROBOT_URDF_MAX: usize = 1200;
+const ROBOT_STRENGTH_MAX: usize = 400;
+/// Accepted robot mutants planned for real: the first accepted mutant whose id contains the
+/// first and ends with the second.
+const ROBOT_PLAN_PICKS: &[(&str, &str)] = &[
+    ("<limit effort>", "huge-effort"),
+    ("<limit upper>", "infinite-upper"),
+    ("<mass value>", "1e-300"),
+    ("<inertia", "huge-inertia"),
+    ("<limit>@", "removed"),
+    ("<origin xyz>", " 0"),
+    ("", "capsule"),
+    ("", "type-continuous"),
+    ("strength.yaml", "removed"),
+];
+
+// ================================================================================================
+// Generated mutants of the shipped recordings: line- and cell-level mutations of
+// recordings/shelf_plan.csv and of the OpenSim .mot/.sto files in tests/data/opensim
+// ================================================================================================
+
+/// A recording's layout for its mutator: the column delimiter, the index of the column-label
+/// line, and the OpenSim header keys (empty for CSV).
+struct Layout {
+    delim: char,
+    labels_line: usize,
+}
+
+/// Mutants of a table-like recording (see the README for the operators).
+fn table_mutants(label: &str, text: &str, lay: &Layout) -> Vec<Mutant> {
+    let lines: Vec<&str> = text.lines().collect();
+    let d = lay.delim;
+    let first = lay.labels_line + 1;
+    let n = lines.len();
+    assert!(n > first + 1, "{label}: too few data lines to mutate");
+    let join = |v: &[String]| {
+        let mut s = v.join("\n");
+        if !v.is_empty() {
+            s.push('\n');
+        }
+        s
+    };
+    let owned: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    let mut out = Vec::new();
+    let mut push = |id: String, s: Vec<u8>| {
+        out.push(Mutant {
+            id: format!("{label} {id}"),
+            bytes: s,
+        })
+    };
+    let with_line = |i: usize, l: String| {
+        let mut v = owned.clone();
+        v[i] = l;
+        join(&v)
+    };
+    // data lines tried: the first two, one in the middle, the last
+    let rows: Vec<usize> = {
+        let mut r = vec![first, first + 1, first + (n - first) / 2, n - 1];
+        r.dedup();
+        r
+    };
+    let ncols = lines[lay.labels_line].split(d).count();
+    let cols: Vec<usize> = {
+        let mut c = vec![0, 1, ncols / 2, ncols - 1];
+        c.dedup();
+        c
+    };
+    const CELLS: &[(&str, &str)] = &[
+        ("nan", "nan"),
+        ("NaN", "NaN"),
+        ("inf", "inf"),
+        ("-inf", "-inf"),
+        ("1e300", "1e300"),
+        ("-1e300", "-1e300"),
+        ("1e-300", "1e-300"),
+        ("", "empty"),
+        ("abc", "text"),
+        ("0x10", "hex"),
+        ("1e", "cut-exponent"),
+        (" 0.5 ", "spaces"),
+        ("\"0.5\"", "quoted"),
+        ("0.5\u{ff}", "latin1-char"),
+    ];
+    for &r in &rows {
+        let cells: Vec<&str> = lines[r].split(d).collect();
+        for &c in &cols {
+            if c >= cells.len() {
+                continue;
+            }
+            for (v, l) in CELLS {
+                let mut cs: Vec<String> = cells.iter().map(|x| x.to_string()).collect();
+                cs[c] = v.to_string();
+                push(
+                    format!("line {} column {} {l}", r + 1, c + 1),
+                    with_line(r, cs.join(&d.to_string())).into_bytes(),
+                );
+            }
+        }
+        // line-level
+        let l = |s: &str| format!("line {} {s}", r + 1);
+        let mut v = owned.clone();
+        v.remove(r);
+        push(l("removed"), join(&v).into_bytes());
+        let mut v = owned.clone();
+        v.insert(r, lines[r].to_string());
+        push(l("duplicated-time-repeated"), join(&v).into_bytes());
+        if r + 1 < n {
+            let mut v = owned.clone();
+            v.swap(r, r + 1);
+            push(l("swapped-time-backwards"), join(&v).into_bytes());
+        }
+        let mut t: Vec<String> = cells.iter().map(|x| x.to_string()).collect();
+        if r > first {
+            t[0] = lines[r - 1].split(d).next().unwrap().to_string();
+            push(
+                l("time-of-previous-line"),
+                with_line(r, t.join(&d.to_string())).into_bytes(),
+            );
+        }
+        let t0: f64 = cells[0].trim().parse().unwrap();
+        let mut t: Vec<String> = cells.iter().map(|x| x.to_string()).collect();
+        t[0] = format!("{}", t0 - 1e6);
+        push(
+            l("time-far-back"),
+            with_line(r, t.join(&d.to_string())).into_bytes(),
+        );
+        push(
+            l("too-few-cells"),
+            with_line(r, cells[..cells.len() - 1].join(&d.to_string())).into_bytes(),
+        );
+        push(
+            l("too-many-cells"),
+            with_line(r, format!("{}{d}0", lines[r])).into_bytes(),
+        );
+        push(
+            l("one-cell"),
+            with_line(r, cells[0].to_string()).into_bytes(),
+        );
+        let mut v = owned.clone();
+        v.insert(r, String::new());
+        push(l("empty-line-before"), join(&v).into_bytes());
+        let mut v = owned.clone();
+        v.insert(r, "# a comment".into());
+        push(l("comment-line-before"), join(&v).into_bytes());
+        push(
+            l("crlf"),
+            with_line(r, format!("{}\r", lines[r])).into_bytes(),
+        );
+        let mut b = join(&owned[..r]).into_bytes();
+        b.extend_from_slice(lines[r].as_bytes());
+        b.extend_from_slice(b"\xff\xfe\n");
+        b.extend_from_slice(join(&owned[r + 1..]).as_bytes());
+        push(l("non-utf8-byte"), b);
+        // a megabyte line: a number of a million digits, and a million letters
+        let mut t: Vec<String> = cells.iter().map(|x| x.to_string()).collect();
+        let k = 1 % t.len();
+        t[k] = format!("0.{}", "1".repeat(1 << 20));
+        push(
+            l("megabyte-number"),
+            with_line(r, t.join(&d.to_string())).into_bytes(),
+        );
+        push(
+            l("megabyte-line"),
+            with_line(r, "x".repeat(1 << 20)).into_bytes(),
+        );
+    }
+    // the column-label line
+    let h = lay.labels_line;
+    let labels: Vec<&str> = lines[h].split(d).collect();
+    let hl = |s: &str| format!("line {} {s}", h + 1);
+    let with_labels = |v: Vec<String>| with_line(h, v.join(&d.to_string())).into_bytes();
+    for &c in &cols {
+        let mut v: Vec<String> = labels.iter().map(|x| x.to_string()).collect();
+        v[c] = format!("{}x", labels[c]);
+        push(hl(&format!("column {} renamed", c + 1)), with_labels(v));
+        let mut v: Vec<String> = labels.iter().map(|x| x.to_string()).collect();
+        v[c] = String::new();
+        push(hl(&format!("column {} unnamed", c + 1)), with_labels(v));
+        if c > 0 {
+            let mut v: Vec<String> = labels.iter().map(|x| x.to_string()).collect();
+            v[c] = labels[c - 1].to_string();
+            push(
+                hl(&format!("column {} duplicated-column", c + 1)),
+                with_labels(v),
+            );
+        }
+    }
+    let mut v: Vec<String> = labels.iter().map(|x| x.to_string()).collect();
+    v.push("extra".into());
+    push(hl("extra-label"), with_labels(v));
+    push(
+        hl("label-removed"),
+        with_labels(
+            labels[..labels.len() - 1]
+                .iter()
+                .map(|x| x.to_string())
+                .collect(),
+        ),
+    );
+    let mut v = owned.clone();
+    v.remove(h);
+    push(hl("removed"), join(&v).into_bytes());
+    push(
+        hl("crlf"),
+        with_line(h, format!("{}\r", lines[h])).into_bytes(),
+    );
+    // OpenSim header keys
+    for (i, line) in lines[..h].iter().enumerate() {
+        let Some((k, val)) = line.split_once('=') else {
+            if line.trim() == "endheader" {
+                let mut v = owned.clone();
+                v.remove(i);
+                push(
+                    format!("line {} endheader-removed", i + 1),
+                    join(&v).into_bytes(),
+                );
+                let mut v = owned.clone();
+                v.insert(i, "endheader".into());
+                push(
+                    format!("line {} endheader-twice", i + 1),
+                    join(&v).into_bytes(),
+                );
+            }
+            continue;
+        };
+        let kl = |s: &str| format!("line {} {k} {s}", i + 1);
+        let mut vals: Vec<(String, String)> = match k.trim() {
+            "inDegrees" => vec![
+                (
+                    (if val.trim() == "yes" { "no" } else { "yes" }).into(),
+                    "flipped".into(),
+                ),
+                ("maybe".into(), "text".into()),
+            ],
+            "nRows" | "nColumns" => {
+                let x: i64 = val.trim().parse().unwrap();
+                vec![
+                    ((x + 1).to_string(), "one-more".into()),
+                    ((x - 1).to_string(), "one-fewer".into()),
+                    ("0".into(), "0".into()),
+                    ("-1".into(), "-1".into()),
+                    ("1e300".into(), "1e300".into()),
+                    ("99999999999999999999".into(), "2^66".into()),
+                    ("abc".into(), "text".into()),
+                ]
+            }
+            _ => vec![("abc".into(), "text".into())],
+        };
+        vals.push((String::new(), "empty".into()));
+        for (x, l) in vals {
+            push(kl(&l), with_line(i, format!("{k}={x}")).into_bytes());
+        }
+        let mut v = owned.clone();
+        v.remove(i);
+        push(kl("removed"), join(&v).into_bytes());
+        let mut v = owned.clone();
+        v.insert(i, line.to_string());
+        push(kl("twice"), join(&v).into_bytes());
+    }
+    // whole-file mutants
+    let whole: Vec<(&str, Vec<u8>)> = vec![
+        ("empty-file", Vec::new()),
+        ("labels-only", join(&owned[..first]).into_bytes()),
+        (
+            "truncated-mid-line",
+            text.as_bytes()[..text.len() / 2].to_vec(),
+        ),
+        ("crlf", text.replace('\n', "\r\n").into_bytes()),
+        (
+            "bom",
+            [b"\xef\xbb\xbf".as_slice(), text.as_bytes()].concat(),
+        ),
+        ("no-final-newline", text.trim_end().as_bytes().to_vec()),
+        ("file-twice", format!("{text}{text}").into_bytes()),
+        (
+            "binary-garbage",
+            (0..4096u32)
+                .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+                .collect(),
+        ),
+        (
+            "other-delimiter",
+            text.replace(d, if d == ',' { ";" } else { "," })
+                .into_bytes(),
+        ),
+    ];
+    for (l, b) in whole {
+        push(format!("<file> {l}"), b);
+    }
+    out
+}
+
+/// Words a message about a recording may name.
+fn recording_field_words() -> Vec<String> {
+    [
+        "column",
+        "header",
+        "endheader",
+        "nRows",
+        "nColumns",
+        "inDegrees",
+        "time",
+        "t_s",
+        "mapping",
+        "label",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect()
+}
+
+/// Cases for recording mutants: `evaluate sub/mNNNNN.EXT ARGS... --json`, run in `dir`.
+fn recording_cases(
+    dir: &Path,
+    sub: &str,
+    ext: &str,
+    mutants: &[Mutant],
+    extra: &[&str],
+) -> Vec<Case> {
+    std::fs::create_dir_all(dir.join(sub)).unwrap();
+    let fields = recording_field_words();
+    mutants
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let name = format!("{sub}/m{i:05}.{ext}");
+            std::fs::write(dir.join(&name), &m.bytes).unwrap();
+            let mut args = vec!["evaluate".to_string(), name.clone()];
+            args.extend(extra.iter().map(|s| s.to_string()));
+            args.push("--json".into());
+            Case {
+                id: m.id.clone(),
+                args,
+                cwd: dir.to_path_buf(),
+                stdin: None,
+                timeout: T_CHECK,
+                file: name,
+                fields: fields.clone(),
+                accepted_marker: None,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn mutants_of_the_shipped_recordings_are_evaluated_or_refused() {
+    let dir = scratch_repo();
+    std::fs::copy(
+        root().join("tasks/shelf.yaml"),
+        dir.path().join("tasks/shelf.yaml"),
+    )
+    .unwrap();
+    let mut cases = Vec::new();
+    let mut counts = Vec::new();
+    // the plan's recording of tasks/shelf.yaml, evaluated with that task
+    let text = std::fs::read_to_string(root().join("recordings/shelf_plan.csv")).unwrap();
+    let m = table_mutants(
+        "recordings/shelf_plan.csv",
+        &text,
+        &Layout {
+            delim: ',',
+            labels_line: 0,
+        },
+    );
+    counts.push(("recordings/shelf_plan.csv", m.len()));
+    cases.extend(recording_cases(
+        dir.path(),
+        "recordings/shelf_plan",
+        "csv",
+        &m,
+        &["--task", "tasks/shelf.yaml"],
+    ));
+    // OpenSim recordings of the Rajagopal (2016) model, with its mapping, on the generated worker
+    let map = "data/opensim/rajagopal2016.mapping.yaml";
+    for f in [
+        "rajagopal_small.mot",
+        "small_radians.sto",
+        "legacy_simm.mot",
+    ] {
+        let text = std::fs::read_to_string(root().join("tests/data/opensim").join(f)).unwrap();
+        let labels_line = text.lines().position(|l| l.trim() == "endheader").unwrap() + 1;
+        let label = format!("tests/data/opensim/{f}");
+        let m = table_mutants(
+            &label,
+            &text,
+            &Layout {
+                delim: '\t',
+                labels_line,
+            },
+        );
+        counts.push((f, m.len()));
+        let (stem, ext) = f.rsplit_once('.').unwrap();
+        cases.extend(recording_cases(
+            dir.path(),
+            &format!("recordings/{stem}"),
+            ext,
+            &m,
+            &["--mapping", map],
+        ));
+    }
+    // the mapping itself, mutated, with the first OpenSim recording
+    let map_text = std::fs::read_to_string(root().join(map)).unwrap();
+    let mm = sample(yaml_mutants(map, &map_text, 1), 300);
+    counts.push(("rajagopal2016.mapping.yaml", mm.len()));
+    std::fs::create_dir_all(dir.path().join("mapping")).unwrap();
+    std::fs::copy(
+        root().join("tests/data/opensim/rajagopal_small.mot"),
+        dir.path().join("mapping/small.mot"),
+    )
+    .unwrap();
+    let fields = recording_field_words()
+        .into_iter()
+        .chain(
+            [
+                "joints",
+                "joint",
+                "from",
+                "sign",
+                "offset_deg",
+                "offset_m",
+                "kind",
+                "model",
+                "ignore",
+            ]
+            .map(String::from),
+        )
+        .collect::<Vec<_>>();
+    for (i, m) in mm.iter().enumerate() {
+        let name = format!("mapping/m{i:05}.yaml");
+        std::fs::write(dir.path().join(&name), &m.bytes).unwrap();
+        cases.push(Case {
+            id: m.id.clone(),
+            args: vec![
+                "evaluate".into(),
+                "mapping/small.mot".into(),
+                "--mapping".into(),
+                name.clone(),
+                "--json".into(),
+            ],
+            cwd: dir.path().to_path_buf(),
+            stdin: None,
+            timeout: T_CHECK,
+            file: name,
+            fields: fields.clone(),
+            accepted_marker: None,
+        });
+    }
+    eprintln!("recording mutants: {counts:?}");
+    let outcomes = run_cases(cases);
+    assert_outcomes("recording mutants", &outcomes);
+}
+
+// ================================================================================================
 // Issue 13, the remaining classes: limits named up front, no huge numbers, no hangs
 // ================================================================================================
 

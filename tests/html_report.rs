@@ -181,6 +181,7 @@ fn sweep_html() -> &'static str {
                     Problem::OutOfReach {
                         phase: "place".into(),
                         hand_error_m: 0.034,
+                        proven: true,
                     },
                 ],
             ),

@@ -156,6 +156,82 @@ fn pose(p: &urdf_rs::Pose) -> Isometry3<f64> {
     Isometry3::from_parts(Translation3::from(vec3(&p.xyz)), rot)
 }
 
+/// Deepest element nesting accepted in a URDF (a URDF needs about 5: robot, link, collision,
+/// geometry, shape); the XML reader recurses per level, so far deeper nesting overflowed its
+/// stack.
+pub const MAX_URDF_NESTING: usize = 100;
+
+/// Refuses XML elements nested deeper than [`MAX_URDF_NESTING`], naming the line, before the
+/// recursive XML reader sees them. A light scan: comments, processing instructions, declarations
+/// (a DOCTYPE's internal subset too), CDATA and quoted attribute values are skipped.
+fn check_nesting(text: &str, origin: &str) -> Result<(), BodyError> {
+    let b = text.as_bytes();
+    let (mut i, mut depth, mut line) = (0usize, 0usize, 1usize);
+    let skip_to = |from: usize, end: &[u8]| {
+        b[from..]
+            .windows(end.len())
+            .position(|w| w == end)
+            .map_or(b.len(), |p| from + p + end.len())
+    };
+    let lines_in = |from: usize, to: usize| b[from..to].iter().filter(|&&c| c == b'\n').count();
+    while i < b.len() {
+        if b[i] == b'\n' {
+            line += 1;
+        }
+        if b[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        let rest = &b[i..];
+        let end = if rest.starts_with(b"<!--") {
+            skip_to(i + 4, b"-->")
+        } else if rest.starts_with(b"<![CDATA[") {
+            skip_to(i + 9, b"]]>")
+        } else if rest.starts_with(b"<?") {
+            skip_to(i + 2, b"?>")
+        } else if rest.starts_with(b"<!") {
+            // a declaration; a DOCTYPE's internal subset ends with "]>"
+            let gt = skip_to(i + 2, b">");
+            if b[i..gt.min(b.len())].contains(&b'[') {
+                skip_to(i + 2, b"]>")
+            } else {
+                gt
+            }
+        } else {
+            // a start or end tag: to its '>' outside quotes
+            let mut k = i + 1;
+            let mut quote = None;
+            while k < b.len() {
+                match (quote, b[k]) {
+                    (None, b'"' | b'\'') => quote = Some(b[k]),
+                    (Some(q), c) if c == q => quote = None,
+                    (None, b'>') => break,
+                    _ => {}
+                }
+                k += 1;
+            }
+            if b.get(i + 1) == Some(&b'/') {
+                depth = depth.saturating_sub(1);
+            } else if k < b.len() && b[k - 1] != b'/' {
+                depth += 1;
+                if depth > MAX_URDF_NESTING {
+                    return Err(BodyError::Invalid {
+                        path: origin.into(),
+                        element: format!("line {line}"),
+                        problem: format!(
+                            "elements nested more than {MAX_URDF_NESTING} deep (a URDF needs about 5)"
+                        ),
+                    });
+                }
+            }
+            (k + 1).min(b.len())
+        };
+        line += lines_in(i, end.min(b.len()));
+        i = end;
+    }
+    Ok(())
+}
+
 impl BodyModel {
     /// Loads a URDF file.
     pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, BodyError> {
@@ -170,6 +246,7 @@ impl BodyModel {
 
     /// Loads URDF text; `origin` names the source in error messages.
     pub fn from_urdf_str(text: &str, origin: &str) -> Result<Self, BodyError> {
+        check_nesting(text, origin)?;
         let robot = urdf_rs::read_from_string(text).map_err(|e| BodyError::Urdf {
             path: origin.into(),
             message: e.to_string(),

@@ -8,7 +8,8 @@
 //! * [`ik`], [`search`]: starting postures and the deterministic multi-start;
 //! * [`planner`]: coordination passes across phases, the time loop with re-planning, baselines;
 //! * [`result`]: the plan document;
-//! * [`held`]: the held object against the worker's own body (a collision of its phase).
+//! * [`held`]: the held object against the worker's own body (a collision of its phase);
+//! * [`reach`]: when a target is provably out of reach (beyond the kinematic chain's length).
 
 pub mod held;
 pub mod ik;
@@ -16,6 +17,7 @@ pub mod objective;
 pub mod planner;
 pub mod posture;
 pub mod qp;
+pub mod reach;
 pub mod result;
 pub mod search;
 pub mod sqp;

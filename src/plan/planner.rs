@@ -739,6 +739,12 @@ impl<'t> Planner<'t> {
                     q_rad: q.clone(),
                     hand_error_m: sol.hand_error_m,
                     reachable: sol.hand_error_m <= super::search::REACH_TOL_M,
+                    beyond_reach_m: ph
+                        .targets_m
+                        .iter()
+                        .enumerate()
+                        .filter_map(|(h, tg)| super::reach::beyond_reach_m(t, h, tg.as_ref()?))
+                        .reduce(f64::max),
                     target_inside,
                     min_clearance_m,
                     closest,

@@ -111,6 +111,11 @@ pub struct PhaseSummary {
     /// Largest hand error \[m\] (0 when on target).
     pub hand_error_m: f64,
     pub reachable: bool,
+    /// How far a target lies beyond any posture's reach (farther from the feet, or the base,
+    /// than the body's kinematic chain is long), when it does: then "out of reach" is proven.
+    /// `None` for an unreached target within that length: the optimiser found no balanced
+    /// posture that reaches it, which does not prove that none exists.
+    pub beyond_reach_m: Option<f64>,
     /// The obstacle a target lies inside, if any.
     pub target_inside: Option<String>,
     pub min_clearance_m: f64,
@@ -196,8 +201,13 @@ impl PhaseSummary {
         if !self.reachable {
             v.push(match &self.target_inside {
                 Some(o) => format!("'{}': the target lies inside '{o}'", self.phase),
+                None if self.beyond_reach_m.is_some() => format!(
+                    "'{}': the target is out of reach by {:.0} mm (feet in place, balance kept; it is farther than the body is long)",
+                    self.phase,
+                    1000.0 * self.hand_error_m
+                ),
                 None => format!(
-                    "'{}': the target is out of reach by {:.0} mm (feet in place, balance kept)",
+                    "'{}': the target was not reached, {:.0} mm short (feet in place, balance kept; no posture that reaches it was found, though it is within the body's length)",
                     self.phase,
                     1000.0 * self.hand_error_m
                 ),

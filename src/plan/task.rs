@@ -533,6 +533,9 @@ impl Task {
         };
         let mut input_files = Vec::new();
         let table_default = StrengthTable::default_table();
+        // the file a strength-table problem is reported against: the table beside the URDF
+        // when one was read, else the robot (its URDF efforts) or the generated worker
+        let mut table_origin = None;
         let (model, robot, table, generated) = match &f.robot {
             Some(r) => {
                 let urdf = path.parent().unwrap_or(Path::new(".")).join(r);
@@ -568,6 +571,11 @@ impl Task {
                 let sp = StrengthTable::path_beside(&urdf);
                 let table = if sp.exists() {
                     input_files.push(sp.clone());
+                    table_origin = Some(format!(
+                        "{} (strength table of {})",
+                        sp.display(),
+                        urdf.display()
+                    ));
                     StrengthTable::from_file(&sp).map_err(|e| field("robot", e.to_string()))?
                 } else {
                     table_default
@@ -638,8 +646,13 @@ impl Task {
                 format!("'{}' is not a link of the robot", hand_names[1]),
             ));
         }
-        let half_joints = resolve_half_joints(&model, &table, &f.worker, &robot)
-            .map_err(|e| field("robot", e.to_string()))?;
+        let half_joints = resolve_half_joints(
+            &model,
+            &table,
+            &f.worker,
+            table_origin.as_deref().unwrap_or(&robot),
+        )
+        .map_err(|e| field("robot", e.to_string()))?;
         let unactuated: Vec<usize> = table
             .unactuated
             .iter()
@@ -668,6 +681,13 @@ impl Task {
                 .unwrap_or([LEFT_FOOT_LINK.to_string(), RIGHT_FOOT_LINK.to_string()]);
             let foot = |i: usize| {
                 Foot::from_link(&model, &feet_names[i]).map_err(|e| {
+                    // the foot's problem is in the robot's file: name it, not the model's name
+                    let e = match e {
+                        crate::body::BodyError::Invalid {
+                            element, problem, ..
+                        } => format!("{robot}: {element}: {problem}"),
+                        other => format!("{robot}: {other}"),
+                    };
                     field(
                         "stance.feet",
                         format!("{e} (a floating-base robot stands on two feet)"),

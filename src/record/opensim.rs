@@ -1378,6 +1378,25 @@ impl Mapping {
                     format!("joint {:?}: offset is not finite", e.joint),
                 ));
             }
+            // an offset of more than a turn, or beyond the body model's largest offset, is a
+            // typo (it would only surface as an absurd joint value at the first sample)
+            let (limit, unit) = match kind {
+                CoordinateKind::Rotation => (std::f64::consts::TAU, "360°"),
+                CoordinateKind::Translation => (crate::body::model::MAX_OFFSET_M, "100 m"),
+            };
+            if offset.abs() > limit {
+                return Err(invalid(
+                    line,
+                    format!(
+                        "joint {:?}: offset must be within ±{unit}, got {}",
+                        e.joint,
+                        match kind {
+                            CoordinateKind::Rotation => format!("{}°", offset.to_degrees()),
+                            CoordinateKind::Translation => format!("{offset} m"),
+                        }
+                    ),
+                ));
+            }
             if let Some(prev) = joints.iter().find(|j: &&JointMap| j.joint == e.joint) {
                 return Err(invalid(
                     line,
@@ -1510,12 +1529,17 @@ impl Mapping {
             let translation_joints = match (&g.reference_point_m, &g.translation_joints) {
                 (None, None) => None,
                 (Some(p), Some(t)) => {
-                    if !p.iter().all(|x| x.is_finite()) {
+                    if !p
+                        .iter()
+                        .all(|x| x.is_finite() && x.abs() <= crate::body::model::MAX_OFFSET_M)
+                    {
                         return Err(invalid(
                             line,
                             format!(
-                                "rotation group {:?}: reference_point_m is not finite",
-                                g.name
+                                "rotation group {:?}: reference_point_m must be finite and within ±{} m, got {:?}",
+                                g.name,
+                                crate::body::model::MAX_OFFSET_M,
+                                p
                             ),
                         ));
                     }

@@ -58,6 +58,8 @@ enum Reader<R: BufRead> {
     OpenSim {
         motion: Box<MappedMotion<R>>,
         name: String,
+        /// The mapping file: a sample refused after mapping may be the mapping's fault.
+        mapping_name: String,
     },
 }
 
@@ -111,6 +113,7 @@ impl<R: BufRead> Reader<R> {
                 Ok(Reader::OpenSim {
                     motion: Box::new(motion),
                     name,
+                    mapping_name: mapping.origin().to_string(),
                 })
             }
         }
@@ -205,7 +208,13 @@ fn eval_err<R: BufRead>(r: &Reader<R>, e: EvalError) -> RunError {
     let problem = match e {
         // a recording's time is its first column
         EvalError::Time { .. } => format!("column 1 (time): {e}"),
-        e => e.to_string(),
+        e => match r {
+            // the worker's joint values come from the coordinates through the mapping
+            Reader::OpenSim { mapping_name, .. } => {
+                format!("{e} (the coordinates as mapped by {mapping_name})")
+            }
+            Reader::Csv { .. } => e.to_string(),
+        },
     };
     sample_err(r, problem)
 }
@@ -294,10 +303,18 @@ pub struct Evaluation {
 fn check_sample<R: BufRead>(ev: &mut Evaluator, r: &Reader<R>, s: &Sample) -> Result<(), RunError> {
     if let Err((k, v)) = ev.check_range(&s.q_rad) {
         let j = ev.task().model.q_joint(k);
+        let hint = match r {
+            // OpenSim angles are converted by the file's inDegrees header, then mapped
+            Reader::OpenSim { mapping_name, .. } => format!(
+                "check the file's inDegrees header and the sign and offset of {}'s entry in {mapping_name}",
+                j.name
+            ),
+            Reader::Csv { .. } => "is the recording in degrees? Use --degrees".into(),
+        };
         return Err(sample_err(
             r,
             format!(
-                "{} = {v} rad lies far outside its range [{:.2}, {:.2}] rad, and {v}° would fit: is the recording in degrees? Use --degrees",
+                "{} = {v} rad lies far outside its range [{:.2}, {:.2}] rad, and {v}° would fit: {hint}",
                 j.name, j.lower_rad, j.upper_rad
             ),
         ));

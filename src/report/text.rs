@@ -117,7 +117,12 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 String::new()
             } else {
                 format!(
-                    " — TARGET OUT OF REACH by {:.0} mm (feet in place, balance kept){}",
+                    " — TARGET {} by {:.0} mm (feet in place, balance kept){}",
+                    if ph.beyond_reach_m.is_some() {
+                        "OUT OF REACH"
+                    } else {
+                        "NOT REACHED (no posture that reaches it found; within the body's length)"
+                    },
                     1000.0 * ph.hand_error_m,
                     ph.target_inside
                         .as_ref()

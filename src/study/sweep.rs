@@ -178,9 +178,12 @@ pub enum Problem {
         phase: String,
         load: f64,
     },
+    /// A target not reached; `proven`: beyond the body's full length (out of reach whatever
+    /// the posture), else only not found by the optimiser.
     OutOfReach {
         phase: String,
         hand_error_m: f64,
+        proven: bool,
     },
     Collision {
         phase: String,
@@ -426,6 +429,7 @@ pub fn one(
             problems.push(Problem::OutOfReach {
                 phase: p.phase.clone(),
                 hand_error_m: p.hand_error_m,
+                proven: p.beyond_reach_m.is_some(),
             });
         }
         if p.min_clearance_m < 0.0 {
@@ -631,8 +635,16 @@ pub fn problem_text(p: &Problem) -> String {
         Problem::OutOfReach {
             phase,
             hand_error_m,
+            proven,
         } => {
-            format!("'{phase}' out of reach by {:.0} mm", 1000.0 * hand_error_m)
+            if *proven {
+                format!("'{phase}' out of reach by {:.0} mm", 1000.0 * hand_error_m)
+            } else {
+                format!(
+                    "'{phase}' not reached ({:.0} mm short; no balanced posture reaching it was found)",
+                    1000.0 * hand_error_m
+                )
+            }
         }
         Problem::Collision {
             phase,

@@ -97,7 +97,8 @@ fn kind(p: &Problem) -> &'static str {
     match p {
         Problem::ExceedsStrength { .. } => "a load exceeds a group’s strength",
         Problem::Exhaustion { .. } => "a muscle group is exhausted within the task",
-        Problem::OutOfReach { .. } => "a target is out of reach",
+        Problem::OutOfReach { proven: true, .. } => "a target is out of reach",
+        Problem::OutOfReach { proven: false, .. } => "a target is not reached",
         Problem::Collision { .. } => "a posture collides with the workstation",
         Problem::OffBalance { .. } => "off balance",
     }

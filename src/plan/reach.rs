@@ -1,0 +1,69 @@
+//! When "out of reach" is proven: a hand can never be farther from the point its body stands on
+//! (a foot's frame on its stance, or a fixed base) than the kinematic chain between them is
+//! long. The chain is made of rigid pieces joined at the joints, so the distance between two
+//! link frames is at most the sum of the joint offsets on the tree path between them (the
+//! triangle inequality, at any posture), plus the largest travel of any prismatic joint on the
+//! path. A target beyond that bound is out of reach whatever the optimiser does; a target within
+//! it that the optimiser did not reach (with the feet in place and the balance kept) is only
+//! "not reached": no search can prove that no balanced, collision-free posture reaches it.
+
+use super::task::Task;
+use crate::body::{BodyModel, JointKind, StaticsData, forward_kinematics};
+use nalgebra::Vector3;
+
+/// Upper bound on the distance between the frames of links `a` and `b` at any posture \[m\].
+pub fn chain_length_m(m: &BodyModel, a: usize, b: usize) -> f64 {
+    let ancestors = |mut l: usize| {
+        let mut v = vec![l];
+        while let Some(j) = m.links[l].parent_joint {
+            l = m.joints[j].parent_link;
+            v.push(l);
+        }
+        v
+    };
+    let (pa, pb) = (ancestors(a), ancestors(b));
+    let Some(&common) = pa.iter().find(|l| pb.contains(l)) else {
+        return f64::INFINITY;
+    };
+    let up_to_common = |path: &[usize]| -> f64 {
+        path.iter()
+            .take_while(|&&l| l != common)
+            .filter_map(|&l| m.links[l].parent_joint)
+            .map(|j| {
+                let joint = &m.joints[j];
+                let travel = if joint.kind == JointKind::Prismatic {
+                    joint.lower_rad.abs().max(joint.upper_rad.abs())
+                } else {
+                    0.0
+                };
+                joint.parent_from_joint.translation.vector.norm() + travel
+            })
+            .sum()
+    };
+    up_to_common(&pa) + up_to_common(&pb)
+}
+
+/// How far \[m\] `target_m` lies beyond every posture's reach of hand `h` (the hand's link
+/// frame), when it provably does: `Some(excess)` when it is farther from a foot's stance frame
+/// (standing bodies: either foot) or from the fixed base than the chain between them is long.
+pub fn beyond_reach_m(task: &Task, h: usize, target_m: &Vector3<f64>) -> Option<f64> {
+    let m = &task.model;
+    let hand = task.hand_links[h].as_ref()?.0;
+    let anchors: Vec<(usize, Vector3<f64>)> = match &task.stance {
+        Some(st) => (0..2)
+            .map(|i| (st.feet[i].link, st.world_from_foot[i].translation.vector))
+            .collect(),
+        None => {
+            // the root link's frame does not move with q
+            let root = (0..m.links.len()).find(|&l| m.links[l].parent_joint.is_none())?;
+            let mut d = StaticsData::new(m, 0);
+            forward_kinematics(m, &mut d, &vec![0.0; m.nq()]);
+            vec![(root, d.link_point(m, root, &Vector3::zeros()))]
+        }
+    };
+    let excess = anchors
+        .iter()
+        .map(|(link, at)| (target_m - at).norm() - chain_length_m(m, *link, hand))
+        .fold(f64::NEG_INFINITY, f64::max);
+    (excess > 0.0).then_some(excess)
+}
