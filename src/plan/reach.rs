@@ -1,5 +1,6 @@
 //! When "out of reach" is proven: a hand can never be farther from the point its body stands on
-//! (a foot's frame on its stance, or a fixed base) than the kinematic chain between them is
+//! (a foot's frame on its stance, or the last frame fixed in the world on the way from a fixed
+//! base to the hand, e.g. the shoulder of a fixed arm) than the kinematic chain between them is
 //! long. The chain is made of rigid pieces joined at the joints, so the distance between two
 //! link frames is at most the sum of the joint offsets on the tree path between them (the
 //! triangle inequality, at any posture), plus the largest travel of any prismatic joint on the
@@ -54,11 +55,30 @@ pub fn beyond_reach_m(task: &Task, h: usize, target_m: &Vector3<f64>) -> Option<
             .map(|i| (st.feet[i].link, st.world_from_foot[i].translation.vector))
             .collect(),
         None => {
-            // the root link's frame does not move with q
-            let root = (0..m.links.len()).find(|&l| m.links[l].parent_joint.is_none())?;
+            // The root's frame does not move with q, nor does the frame below it through fixed
+            // joints, nor the child frame of the first revolute joint below those (it turns
+            // about its own origin): the farthest such frame on the way to the hand anchors
+            // the tightest chain.
+            let mut path = vec![hand];
+            while let Some(j) = m.links[*path.last()?].parent_joint {
+                path.push(m.joints[j].parent_link);
+            }
+            path.reverse();
+            let mut anchor = path[0];
+            for &l in &path[1..] {
+                let j = &m.joints[m.links[l].parent_joint?];
+                match j.kind {
+                    JointKind::Fixed => anchor = l,
+                    JointKind::Revolute | JointKind::Continuous => {
+                        anchor = l;
+                        break;
+                    }
+                    _ => break,
+                }
+            }
             let mut d = StaticsData::new(m, 0);
             forward_kinematics(m, &mut d, &vec![0.0; m.nq()]);
-            vec![(root, d.link_point(m, root, &Vector3::zeros()))]
+            vec![(anchor, d.link_point(m, anchor, &Vector3::zeros()))]
         }
     };
     let excess = anchors

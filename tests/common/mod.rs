@@ -332,6 +332,7 @@ pub const NULLABLE_KEYS: &[&str] = &[
     "back_compression_max_n",
     "back_compression_phase",
     "balance_margin_m",
+    "beyond_reach_m",
     "centre_of_pressure_m",
     "cli",
     "closest",
