@@ -2389,12 +2389,7 @@ fn a_held_object_inside_the_body_is_a_collision_of_its_phase() {
         .go();
     o.ok();
     let v = o.json();
-    let ph = &v["plan"]["summary"]["phases"][0];
-    let ph = if ph.is_null() {
-        &v["summary"]["phases"][0]
-    } else {
-        ph
-    };
+    let ph = &v["summary"]["phases"][0];
     assert!(ph["min_clearance_m"].as_f64().unwrap() < -0.005, "{ph}");
     assert!(
         ph["closest"].as_str().unwrap().starts_with("held object ↔"),

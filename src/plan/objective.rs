@@ -30,7 +30,7 @@
 
 use super::task::Task;
 use crate::fatigue::MaState;
-use crate::fatigue::dual::Dual2;
+use crate::fatigue::dual::{Dual2, Real};
 use crate::fatigue::schedule::{HeldStep, lowest_end_capacity, repeated_cycles};
 
 /// ε of `J = ln(S + ε)` \[min\].
@@ -145,6 +145,20 @@ impl<'t> FatigueCost<'t> {
         (u, s)
     }
 
+    /// One cycle's held steps of half-joint `h` into `out`: load `f` in the group's phases, the
+    /// fixed loads elsewhere.
+    fn cycle_steps<T: Real>(&self, h: usize, f: T, out: &mut Vec<HeldStep<T>>) {
+        out.clear();
+        for (s, &t_min) in self.step_t_min.iter().enumerate() {
+            let load = if self.in_group[s] {
+                f
+            } else {
+                T::cst(self.step_loads[h][s])
+            };
+            out.push(HeldStep { f: load, t_min });
+        }
+    }
+
     /// [`Self::total`]'s value alone, from either cache when `f` is unchanged.
     fn cached_value(&mut self, h: usize, f: f64) -> (f64, f64) {
         let bits = f.to_bits();
@@ -158,15 +172,9 @@ impl<'t> FatigueCost<'t> {
         {
             return (u, s);
         }
-        self.scratch_value.clear();
-        for (s, &t_min) in self.step_t_min.iter().enumerate() {
-            let load = if self.in_group[s] {
-                f
-            } else {
-                self.step_loads[h][s]
-            };
-            self.scratch_value.push(HeldStep { f: load, t_min });
-        }
+        let mut steps = std::mem::take(&mut self.scratch_value);
+        self.cycle_steps(h, f, &mut steps);
+        self.scratch_value = steps;
         let st = self.state[h];
         let r = repeated_cycles(
             &self.task.fatigue[h],
@@ -183,19 +191,9 @@ impl<'t> FatigueCost<'t> {
     /// Total U at the end \[min\] of half-joint `h` if it holds `f` in the group's phases, as
     /// (scaled value, ln scale).
     fn total(&mut self, h: usize, f: Dual2) -> (Dual2, f64) {
-        self.scratch.clear();
-        for (s, &t_min) in self.step_t_min.iter().enumerate() {
-            let load = if self.in_group[s] {
-                f
-            } else {
-                Dual2 {
-                    v: self.step_loads[h][s],
-                    d: 0.0,
-                    dd: 0.0,
-                }
-            };
-            self.scratch.push(HeldStep { f: load, t_min });
-        }
+        let mut steps = std::mem::take(&mut self.scratch);
+        self.cycle_steps(h, f, &mut steps);
+        self.scratch = steps;
         let st = self.state[h];
         let r = repeated_cycles(
             &self.task.fatigue[h],
@@ -270,19 +268,9 @@ impl LoadCost for FatigueCost<'_> {
         {
             return Some(r);
         }
-        self.scratch.clear();
-        for (s, &t_min) in self.step_t_min.iter().enumerate() {
-            let load = if self.in_group[s] {
-                Dual2::variable(f)
-            } else {
-                Dual2 {
-                    v: self.step_loads[h][s],
-                    d: 0.0,
-                    dd: 0.0,
-                }
-            };
-            self.scratch.push(HeldStep { f: load, t_min });
-        }
+        let mut steps = std::mem::take(&mut self.scratch);
+        self.cycle_steps(h, Dual2::variable(f), &mut steps);
+        self.scratch = steps;
         let c = lowest_end_capacity(
             &self.task.fatigue[h],
             &self.scratch,
