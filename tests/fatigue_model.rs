@@ -53,7 +53,11 @@ struct Integrated {
 fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
     const RTOL: f64 = 1e-12;
     let dy = |y: f64| -k * f + r * ((-y).exp() - 1.0);
-    let du = |y: f64| f * (-2.0 * y).exp();
+    // U is integrated scaled by 2^-600 (exact in binary), so that its rate, which reaches
+    // f64::MAX shortly before U itself passes 1e306, stays representable.
+    const LN_SCALE: f64 = -600.0 * std::f64::consts::LN_2;
+    let scale = 2f64.powi(-600);
+    let du = |y: f64| f * (-2.0 * y + LN_SCALE).exp();
     // Butcher tableau (Dormand & Prince 1980).
     const A: [[f64; 6]; 7] = [
         [0.0; 6],
@@ -137,10 +141,10 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
         let err = (ey.abs() / (1e-13 * (1.0 + y.abs()))).max(eu.abs() / (1e-300 + RTOL * u5.abs()));
         // U's rate now, held for the time left, already passes 1e306 (the rate only grows
         // while capacity falls): U overflows.
-        if du(y) * (t_min - t) > 1e306 && dy(y) <= 0.0 {
+        if du(y) * (t_min - t) > 1e306 * scale && dy(y) <= 0.0 {
             return Integrated {
                 capacity: y.exp(),
-                du_min: u,
+                du_min: u / scale,
                 overflow: true,
             };
         }
@@ -153,10 +157,10 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
             t += h;
             y = y5;
             u = u5;
-            if u > 1e306 {
+            if u > 1e306 * scale {
                 return Integrated {
                     capacity: y.exp(),
-                    du_min: u,
+                    du_min: u / scale,
                     overflow: true,
                 };
             }
@@ -170,7 +174,7 @@ fn integrate(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> Integrated {
     }
     Integrated {
         capacity: y.exp(),
-        du_min: u,
+        du_min: u / scale,
         overflow: false,
     }
 }
@@ -392,6 +396,28 @@ proptest! {
 /// the paper's value). By hand: λ = k f + R = 0.55/min, c∞ = R/λ = 0.3/0.55 = 6/11, so U grows
 /// like f/c∞² · t = 0.25 · (11/6)² · 660 = 554.58 min; with the transient (e^{−λt} = e^{−363}, gone)
 /// `U = f t/c∞² + f/(λ c∞²) ln(c∞/c0) − f/(λ c∞) (1/c∞ − 1/c0)` = 554.58 − 0.926 − 0.694 ≈ 552.96 min.
+/// A case proptest found: ten times MVC without recovery, where U ends at about 4e305 (by hand:
+/// `U = (e^{2 k f t} − 1) / (2 k)` with 2 k f t ≈ 707.8) and its rate passes f64::MAX before.
+#[test]
+fn huge_u_just_below_overflow() {
+    let p = MaParams::with_recovery(19.096121265333558, Recovery::None).unwrap();
+    let f = 9.688591208509738;
+    let dt_s = 114.77375467986403;
+    check_hold(&p, f, dt_s, 1.0, 0.0).unwrap();
+    let mut s = MaState {
+        capacity: 1.0,
+        fatigue_u_min: 0.0,
+    };
+    p.hold(&mut s, f, dt_s);
+    let t_min = dt_s / 60.0;
+    let by_hand = (2.0 * p.k_per_min * f * t_min).exp_m1() / (2.0 * p.k_per_min);
+    assert!(
+        close(s.fatigue_u_min, by_hand, 1e-9),
+        "{} vs {by_hand}",
+        s.fatigue_u_min
+    );
+}
+
 #[test]
 fn eleven_hour_hold_with_constant_recovery() {
     let (k, r, f, t_min) = (1.0, 0.3, 0.25, 660.0);
