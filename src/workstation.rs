@@ -53,7 +53,7 @@ pub struct Obstacle {
     shape: Box<dyn Shape>,
     /// For planes: (point on the plane, unit normal toward free space). Capsule–plane clearance
     /// is computed in closed form (parry 0.31's capsule–half-space contact misplaces a half-space
-    /// whose pose is not at the origin; `tests/workstation.rs` pins the expected values).
+    /// whose pose is not at the origin; `tests/suite/workstation.rs` pins the expected values).
     plane: Option<(Vector3<f64>, Vector3<f64>)>,
 }
 

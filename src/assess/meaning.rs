@@ -9,6 +9,7 @@
 //!   endurance time of that load from a rested muscle (MET); the largest share is reported.
 //! * **Capacity left**: the lowest capacity at the end of the task (fraction of strength).
 
+use crate::fatigue::ma::CycleMap;
 use crate::fatigue::{MaParams, MaState};
 use crate::plan::{Plan, Task};
 use serde::Serialize;
@@ -88,42 +89,80 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         .map(|p| p.duration_s)
         .chain(std::iter::once(task.rest_s))
         .collect();
-    // Keep the pace: cycle by cycle from the start, at most a week of cycles, stopping at the
-    // periodic steady state.
-    let mut state = vec![MaState::FRESH; nh];
-    let mut t = 0.0;
+    // Keep the pace from the start, at most a week of cycles (and two million), stopping at the
+    // periodic steady state. Capacity is affine in its start value over every step and so over a
+    // cycle (`CycleMap`): cycle n starts at `c* + (1 − c*) Aⁿ`, falling in n, and each step's
+    // start is a fixed affine map of that. A step's exhaustion test is monotone in its start
+    // capacity, so the first cycle in which a group gives out in a step is found by bisection on
+    // n, exactly, instead of holding every cycle in turn.
+    let max_cycles = ((7.0 * 86400.0) / task.cycle_s()).ceil().min(2e6) as u64;
+    let cycle_s: f64 = durations.iter().filter(|d| **d > 0.0).sum();
+    let steps_of = |h: usize, upto: usize| {
+        durations[..upto]
+            .iter()
+            .zip(&loads)
+            .filter(|(d, _)| **d > 0.0)
+            .map(move |(d, l)| (l[h], *d))
+    };
+    // cycles until every group's cycle-start capacity changes by less than 1e-12 per cycle
+    let mut settle_cycles = 1u64;
+    let maps: Vec<CycleMap> = (0..nh)
+        .map(|h| CycleMap::new(&params[h], steps_of(h, durations.len())))
+        .collect();
+    for map in &maps {
+        if map.ln_a >= 0.0 {
+            continue;
+        }
+        let one_minus_a = -map.ln_a.exp_m1();
+        let c_star = map.b / one_minus_a;
+        // |c_n − c_{n−1}| = (1 − c*)(1 − A) A^{n−1}
+        let first = (1.0 - c_star).abs() * one_minus_a;
+        let n = if first < 1e-12 {
+            1.0
+        } else {
+            1.0 + ((1e-12 / first).ln() / map.ln_a).floor() + 1.0
+        };
+        settle_cycles = settle_cycles.max(n.min(u64::MAX as f64) as u64);
+    }
+    let settled_reached = settle_cycles <= max_cycles;
+    let cycles_checked = settle_cycles.min(max_cycles);
     let mut exhausted: Option<(f64, usize)> = None;
-    let max_cycles = ((7.0 * 86400.0) / task.cycle_s()).ceil().min(2e6) as usize;
-    let mut last = vec![1.0; nh];
-    let mut settled_reached = false;
-    'outer: for _ in 0..max_cycles {
-        for (s, d) in durations.iter().enumerate() {
-            if *d <= 0.0 {
+    let mut offset_s = 0.0;
+    for (s, d) in durations.iter().enumerate() {
+        if *d <= 0.0 {
+            continue;
+        }
+        for h in 0..nh {
+            let f = loads[s][h];
+            let before = CycleMap::new(&params[h], steps_of(h, s));
+            let start = |n: u64| before.after(maps[h].after(1.0, n as f64), 1.0);
+            let gives_out = |n: u64| {
+                params[h]
+                    .time_to_exhaustion_s(start(n), f)
+                    .filter(|te| te < d)
+            };
+            if gives_out(cycles_checked - 1).is_none() {
                 continue;
             }
-            for h in 0..nh {
-                if let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, loads[s][h])
-                    && te < *d
-                {
-                    exhausted = Some((t + te, h));
-                    break 'outer;
+            // the first cycle in [0, cycles_checked) in which the group gives out in this step
+            let (mut lo, mut hi) = (0u64, cycles_checked - 1);
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if gives_out(mid).is_some() {
+                    hi = mid;
+                } else {
+                    lo = mid + 1;
                 }
             }
-            for h in 0..nh {
-                params[h].hold(&mut state[h], loads[s][h], *d);
+            let te = gives_out(lo).unwrap_or(0.0);
+            let t_out = lo as f64 * cycle_s + offset_s + te;
+            if exhausted.is_none_or(|(t0, _)| t_out < t0) {
+                exhausted = Some((t_out, h));
             }
-            t += d;
         }
-        let settled = state
-            .iter()
-            .zip(&last)
-            .all(|(s, c)| (s.capacity - c).abs() < 1e-12);
-        if settled {
-            settled_reached = true;
-            break;
-        }
-        last = state.iter().map(|s| s.capacity).collect();
+        offset_s += d;
     }
+    let t = cycles_checked as f64 * cycle_s;
     let (mut share, mut sh_h, mut sh_p) = (0.0, 0, 0);
     for (p, ph) in task.phases.iter().enumerate() {
         for h in 0..nh {

@@ -89,7 +89,7 @@
 //!
 //! ## Sources checked and discrepancies
 //!
-//! Tables A, B and C were checked cell by cell (`tests/tables.rs`) against
+//! Tables A, B and C were checked cell by cell (`tests/suite/reba.rs`) against
 //! the Ergonomics Plus worksheet, the INSHT (Spain) 2015 reprint of Table C
 //! and two partial reprints; no published source disagreed on any cell.
 //! Rule wording differs between the paper and the worksheet (load in lb,
@@ -415,7 +415,7 @@ pub enum RebaError {
 
 /// Table A, indexed `[trunk − 1][neck − 1][legs − 1]` (trunk 1–5, neck 1–3,
 /// legs 1–4). Checked cell by cell against an independently typed copy of
-/// the Ergonomics Plus worksheet in `tests/tables.rs`.
+/// the Ergonomics Plus worksheet in `tests/suite/reba.rs`.
 pub const TABLE_A: [[[u8; 4]; 3]; 5] = [
     // trunk 1: neck 1, neck 2, neck 3 (each legs 1..4)
     [[1, 2, 3, 4], [1, 2, 3, 4], [3, 3, 5, 6]],

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Golden statics from Pinocchio (pip install pin), an independent rigid-body library, for
-tests/body_golden.rs. Writes tests/data/pinocchio/<robot>.json. Run from the repository root:
+tests/suite/body_golden.rs. Writes tests/data/pinocchio/<robot>.json. Run from the repository root:
 
     python3 tests/data/pinocchio_golden.py
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference values for tests/fatigue_recovery.rs, by numerical integration (scipy solve_ivp,
+"""Reference values for tests/suite/fatigue_recovery.rs, by numerical integration (scipy solve_ivp,
 DOP853, rtol 1e-12) of the model as documented, independently of the library's closed forms:
 
     dc/dt = -k f c + R(f) (1 - c),   dU/dt = f / c^2      (t in minutes)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference values for tests/three_compartment.rs: the three-compartment (3CC) fatigue model of
+"""Reference values for tests/suite/three_compartment.rs: the three-compartment (3CC) fatigue model of
 Xia & Frey-Law (2008) with the joint parameters of Frey-Law, Looft & Heitsman (2012, J Biomech
 45:1803, Table 1), integrated with scipy (solve_ivp, DOP853, rtol 1e-12), independently of the
 library's RK4.

@@ -9,7 +9,7 @@
 //! * a plan written as a recording evaluates to the plan's own capacities and fatigue index;
 //! * bad recordings exit with code 2, a message that locates the problem, and no output file.
 
-mod common;
+use crate::common;
 
 use common::{Run, bin, rel, tempdir, write};
 use nalgebra::Vector3;

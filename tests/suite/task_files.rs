@@ -2,7 +2,7 @@
 //! refusal names the file, the line or field, and what is wrong; an out-of-reach target gives
 //! the nearest posture and the plan says so.
 
-mod common;
+use crate::common;
 
 use common::{tempdir, write};
 use nalgebra::{Point3, Vector3};

@@ -5,10 +5,10 @@
 //! made: tests/data/hostile/README.md.
 //!
 //! Known failures are kept in the corpus: a hand-made case as `#[ignore = "BUG: ..."]` (run them
-//! with `cargo test --release --test hostile -- --ignored`), a mutant in [`KNOWN_FAILURES`]. The
+//! with `cargo test --release --test suite -- hostile:: --ignored`), a mutant in [`KNOWN_FAILURES`]. The
 //! mutant tests are strict: a known failure that passes fails the test, so the list stays true.
 
-mod common;
+use crate::common;
 use common::*;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;

@@ -14,7 +14,7 @@ use std::cmp::Ordering;
 use std::path::Path;
 use std::sync::OnceLock;
 
-mod common;
+use crate::common;
 use common::{Out, Run, scan_json, tempdir, write};
 
 /// `posture-opt ARGS` run in `dir`.

@@ -4,7 +4,7 @@
 //!
 //! The browser part runs when `chromium` (or another Chromium binary) is on the PATH, and must
 //! run when `POSTURE_OPT_REQUIRE_CHROMIUM=1` (CI sets it): then a missing browser fails the test.
-//! Run with `cargo test --release --test html_report` (planning is slow without optimisation);
+//! Run with `cargo test --release --test suite -- html_report::` (planning is slow without optimisation);
 //! with `POSTURE_OPT_REPORT_DIR=DIR` the three reports are also written to DIR, to look at.
 
 use posture_opt::assess::{Assessment, assess};
@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-mod common;
+use crate::common;
 use common::run;
 
 /// The phase and obstacle name every report must escape.

@@ -1,6 +1,6 @@
 //! The command line: exit codes and the JSON contract of docs/interface.md.
 
-mod common;
+use crate::common;
 use common::run;
 
 #[test]
