@@ -116,8 +116,8 @@ pub fn statics_report(
             let actuated: Vec<bool> = (0..model.nq())
                 .map(|k| !PELVIS.contains(&model.q_joint(k).name.as_str()))
                 .collect();
-            let mut jac = nalgebra::Matrix3xX::zeros(model.nq());
-            settle_internal_force(model, &mut d, st, &mut g, &actuated, &mut jac);
+            let mut scratch = nalgebra::Matrix3xX::zeros(model.nq());
+            settle_internal_force(model, &mut d, st, &mut g, &actuated, &mut scratch);
             floor = Some(FloorReaction {
                 left_force_n: g.force_n[0].into(),
                 right_force_n: g.force_n[1].into(),

@@ -19,10 +19,18 @@
 //!    line of action at the height `h` of the centre of mass: `F_i = s_i F_z (A − p_i)/h`.
 //!
 //! 4. what statics leaves open between two feet — how hard they push toward or away from each
-//!    other along the line joining them — is settled as the body does with least effort: the
-//!    internal force `λ e` (`e` the horizontal unit vector from the right to the left sole, `+λe`
-//!    on the left foot, `−λe` on the right) minimises the sum of squared torques of the joints
-//!    that carry a foot ([`settle_internal_force`]); it changes no torque above the pelvis.
+//!    other along the line joining them, and how each foot's centre of pressure moves on its
+//!    sole — is settled as the body does with least effort: the internal force `λ e` (`e` the
+//!    horizontal unit vector from the right to the left sole, `+λe` on the left foot, `−λe` on
+//!    the right) and the internal moment pair `±m` (horizontal, world axes: `+m` on the left
+//!    foot) minimise the sum of squared torques of the joints that carry a foot, a 3×3
+//!    least-squares problem ([`settle_internal_force`]); it changes no torque above the pelvis;
+//! 5. a horizontal moment on a foot is its centre of pressure moving on the sole (by
+//!    `(−m_y, m_x)/F_z`), so the soles bound the moments: they are scaled down by the largest
+//!    factor in 0..1 that keeps each foot's centre of pressure on its sole (and λ is chosen again
+//!    for them). With the feet wider than the hips the legs stand as an A-frame and the forces
+//!    lean inward; the centres of pressure move a few millimetres inward to pass under the
+//!    ankles, as a standing person's do, instead of loading the ankle evertors.
 //!
 //! The reactions then balance the body exactly (`Σ F_i = F` and `Σ p_i × F_i = p × F`), so the
 //! torques of the unactuated root joints vanish — a check the tests make against Pinocchio's
@@ -35,6 +43,7 @@
 use super::model::{BodyError, BodyModel};
 use super::statics::{PointLoad, StaticsData};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector2, Vector3};
+use std::ops::AddAssign;
 
 /// A foot: its link and the sole, the bottom face of the link's collision box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -272,55 +281,160 @@ pub fn foot_loads(
     [load(0), load(1)]
 }
 
-/// Settles the internal force between the feet (step 4 of the module docs): after
-/// [`super::statics::apply_loads`] with [`foot_loads`] of `r`, shifts `λ e` to minimise the sum
-/// of squared torques of the `actuated` joints that carry a foot, and updates the torques in
-/// `data` and the forces in `r`. `jac` is scratch (3×nq). Returns λ \[N\].
+/// The internal wrench settled between the feet (steps 4 and 5 of the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct InternalWrench {
+    /// Force `+λe` on the left foot, `−λe` on the right \[N\].
+    pub lambda_n: f64,
+    /// Moment `+m` (world x, y) on the left foot, `−m` on the right \[N·m\].
+    pub moment_nm: Vector2<f64>,
+    /// The share of the least-effort moments the soles allow, 0..1 (1: unbounded optimum).
+    pub sole_factor: f64,
+}
+
+/// Settles what statics leaves open between the feet (steps 4 and 5 of the module docs): after
+/// [`super::statics::apply_loads`] with [`foot_loads`] of `r`, adds the internal force `λ e` and
+/// the internal moment pair `±m` that minimise the sum of squared torques of the `actuated`
+/// joints, with the moments bounded so that each foot's centre of pressure stays on its sole.
+/// Updates the torques in `data` and the forces, centres of pressure and free moments in `r` (the
+/// same wrench as force at the moved centre of pressure plus free moment). `g` is scratch
+/// (3×nq).
 pub fn settle_internal_force(
     model: &BodyModel,
     data: &mut StaticsData,
     stance: &Stance,
     r: &mut GroundReaction,
     actuated: &[bool],
-    jac: &mut nalgebra::Matrix3xX<f64>,
-) -> f64 {
+    g: &mut nalgebra::Matrix3xX<f64>,
+) -> InternalWrench {
     let nq = model.nq();
     let sole = |data: &StaticsData, i: usize| {
         let f = &stance.feet[i];
         data.link_point(model, f.link, &f.sole_center_in_link_m)
     };
-    let d = sole(data, 0) - sole(data, 1);
+    let (c_l, c_r) = (sole(data, 0), sole(data, 1));
+    let d = c_l - c_r;
     let d = Vector3::new(d.x, d.y, 0.0);
     if d.norm() < 1e-9 {
-        return 0.0;
+        return InternalWrench::default();
     }
     let e = d / d.norm();
-    // g_k = ∂τ_k/∂λ = −J_L,kᵀ e + J_R,kᵀ e (at each foot's centre of pressure)
-    let mut g = vec![0.0; nq];
+    // columns of G: ∂τ/∂λ, ∂τ/∂m_x, ∂τ/∂m_y (left foot +, right foot −), nonzero only for the
+    // joints that move a foot: a revolute joint's column is (e·(a × (p − o)), a_x, a_y), a
+    // prismatic one's (e·a, 0, 0)
+    g.fill(0.0);
     for (i, sign) in [(0usize, -1.0), (1usize, 1.0)] {
-        data.point_jacobian(model, stance.feet[i].link, &r.cop_m[i], jac);
-        for (k, gk) in g.iter_mut().enumerate() {
-            *gk += sign * e.dot(&jac.column(k).into_owned());
+        let body = model.link_in_body[stance.feet[i].link].body;
+        let p = r.cop_m[i];
+        for k in (0..nq).filter(|&k| model.q_moves_body(k, body)) {
+            let a = data.axis_w[k];
+            let col = if model.q_joint(k).kind == super::model::JointKind::Prismatic {
+                Vector3::new(e.dot(&a), 0.0, 0.0)
+            } else {
+                Vector3::new(e.dot(&a.cross(&(p - data.origin_w[k]))), a.x, a.y)
+            };
+            g.fixed_view_mut::<3, 1>(0, k).add_assign(sign * col);
         }
     }
-    let (mut num, mut den) = (0.0, 0.0);
+    let mut gtg = nalgebra::Matrix3::<f64>::zeros();
+    let mut gtt = Vector3::<f64>::zeros();
+    for k in (0..nq).filter(|&k| actuated[k]) {
+        let col = g.column(k).into_owned();
+        gtg += col * col.transpose();
+        gtt += col * data.tau_nm[k];
+    }
+    // minimum-norm least squares: eigenvalues below 1e-12 × the largest count as zero
+    let eig = nalgebra::SymmetricEigen::new(gtg);
+    let top = eig.eigenvalues.iter().copied().fold(0.0, f64::max);
+    let mut w = Vector3::zeros();
+    if top > 0.0 {
+        for j in 0..3 {
+            let ev = eig.eigenvalues[j];
+            if ev > 1e-12 * top {
+                let v = eig.eigenvectors.column(j).into_owned();
+                w -= v * (v.dot(&gtt) / ev);
+            }
+        }
+    }
+    let m_opt = Vector2::new(w.y, w.z);
+    let alpha = if m_opt == Vector2::zeros() {
+        1.0
+    } else if !r.supported {
+        0.0
+    } else {
+        sole_factor(model, data, stance, r, [c_l, c_r], &m_opt)
+    };
+    if alpha < 1.0 {
+        let m = alpha * m_opt;
+        let (mut num, mut den) = (0.0, 0.0);
+        for k in (0..nq).filter(|&k| actuated[k]) {
+            let gl = g[(0, k)];
+            num += gl * (data.tau_nm[k] + m.x * g[(1, k)] + m.y * g[(2, k)]);
+            den += gl * gl;
+        }
+        let lambda = if den > 0.0 { -num / den } else { 0.0 };
+        w = Vector3::new(lambda, m.x, m.y);
+    }
     for k in 0..nq {
-        if actuated[k] {
-            num += g[k] * data.tau_nm[k];
-            den += g[k] * g[k];
+        let dt = g.column(k).dot(&w);
+        data.tau_nm[k] += dt;
+        data.tau_load_nm[k] += dt;
+    }
+    r.force_n[0] += w.x * e;
+    r.force_n[1] -= w.x * e;
+    let m = Vector2::new(w.y, w.z);
+    for (i, sigma) in [(0usize, 1.0), (1usize, -1.0)] {
+        let fz = r.force_n[i].z;
+        if m != Vector2::zeros() && fz > 0.0 {
+            let shift = sigma * Vector3::new(-m.y, m.x, 0.0) / fz;
+            r.free_moment_nm[i] -= shift.cross(&r.force_n[i]).z;
+            r.cop_m[i] += shift;
         }
     }
-    if den <= 1e-18 {
-        return 0.0;
+    InternalWrench {
+        lambda_n: w.x,
+        moment_nm: m,
+        sole_factor: alpha,
     }
-    let lambda = -num / den;
-    for (k, gk) in g.iter().enumerate() {
-        data.tau_nm[k] += lambda * gk;
-        data.tau_load_nm[k] += lambda * gk;
+}
+
+/// The largest `α` in 0..1 for which the moments `±α m` keep each foot's centre of pressure on
+/// its sole (or no farther off it than it already is); 0 when a foot carries no weight.
+fn sole_factor(
+    model: &BodyModel,
+    data: &StaticsData,
+    stance: &Stance,
+    r: &GroundReaction,
+    centres: [Vector3<f64>; 2],
+    m: &Vector2<f64>,
+) -> f64 {
+    let mut alpha: f64 = 1.0;
+    for (i, sigma) in [(0usize, 1.0), (1usize, -1.0)] {
+        let fz = r.force_n[i].z;
+        if fz <= 0.0 {
+            return 0.0;
+        }
+        let foot = &stance.feet[i];
+        let shift = sigma * Vector2::new(-m.y, m.x) / fz;
+        let offset = r.cop_m[i] - centres[i];
+        let offset = Vector2::new(offset.x, offset.y);
+        let (rot, _) = data.link_pose(model, foot.link);
+        for (col, half) in [(0, foot.half_length_m), (1, foot.half_width_m)] {
+            let axis = Vector2::new(rot[(0, col)], rot[(1, col)]);
+            if axis.norm() < 1e-9 {
+                continue;
+            }
+            let axis = axis / axis.norm();
+            let (o, s) = (offset.dot(&axis), shift.dot(&axis));
+            let bound = half.max(o.abs());
+            if s > 0.0 {
+                alpha = alpha.min((bound - o) / s);
+            } else if s < 0.0 {
+                alpha = alpha.min((bound + o) / -s);
+            }
+        }
     }
-    r.force_n[0] += lambda * e;
-    r.force_n[1] -= lambda * e;
-    lambda
+    alpha.clamp(0.0, 1.0)
 }
 
 /// d(centre of pressure)/dq (2×nq, into `out`) for fixed hand forces: from the centre of mass's

@@ -228,6 +228,8 @@ pub struct PostureWork {
     pub ground: Option<GroundReaction>,
     loads: Vec<PointLoad>,
     pub jac: Matrix3xX<f64>,
+    /// Scratch of the feet's internal wrench (3×nq).
+    settle_g: Matrix3xX<f64>,
     pub jac2: Matrix3xX<f64>,
     pub cop_jac: Matrix2xX<f64>,
     /// ∂τ/∂q of the last [`PostureWork::linearise`].
@@ -254,6 +256,7 @@ impl PostureWork {
             ground: None,
             loads: Vec::with_capacity(4),
             jac: Matrix3xX::zeros(nq),
+            settle_g: Matrix3xX::zeros(nq),
             jac2: Matrix3xX::zeros(nq),
             cop_jac: Matrix2xX::zeros(nq),
             dtau_dq: DMatrix::zeros(nq, nq),
@@ -298,7 +301,14 @@ impl PostureWork {
         }
         apply_loads(m, &mut self.data, &self.loads, &task.gravity_m_s2);
         if let (Some(st), Some(mut g)) = (&task.stance, ground) {
-            settle_internal_force(m, &mut self.data, st, &mut g, &self.actuated, &mut self.jac);
+            settle_internal_force(
+                m,
+                &mut self.data,
+                st,
+                &mut g,
+                &self.actuated,
+                &mut self.settle_g,
+            );
             ground = Some(g);
         }
         self.ground = ground;

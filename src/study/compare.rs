@@ -133,7 +133,7 @@ pub const SHARD_KIND: &str = "posture-opt compare shard";
 /// Most layouts in one comparison (split larger studies into shards).
 pub const MAX_LAYOUTS: usize = 1000;
 
-pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then L5/S1 compression within NIOSH's action limit (3400 N) before above it before above the maximum (6400 N), then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
+pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then L5/S1 compression within NIOSH's action limit (3400 N) before above it before above the maximum (6400 N), and above the action limit the lower compression, then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
 
 /// A planned layout: its plan and assessment (for reports).
 pub struct Planned {
@@ -237,7 +237,8 @@ struct Key {
     feasible: bool,
     problems: usize,
     exceeds: bool,
-    back: u8,
+    /// NIOSH's class of the L5/S1 compression, then the compression above the action limit.
+    back: (u8, f64),
     exhausted_at_s: f64,
     minutes_to_exhaustion: f64,
     lowest_capacity: f64,
@@ -256,7 +257,7 @@ fn key(o: &LayoutOutcome, variant: Option<usize>) -> Key {
         feasible: o.feasible,
         problems: o.problems.len(),
         exceeds: o.exhaustion.as_ref().is_some_and(|e| e.exceeds_strength),
-        back: back_level(o.back_compression_max_n),
+        back: back_key(o.back_compression_max_n),
         exhausted_at_s,
         minutes_to_exhaustion: v
             .map_or(o.minutes_to_exhaustion, |v| v.minutes_to_exhaustion)
@@ -267,14 +268,17 @@ fn key(o: &LayoutOutcome, variant: Option<usize>) -> Key {
     }
 }
 
-/// 0: L5/S1 compression within NIOSH's action limit (3400 N), 1: above it, 2: above the
-/// maximum permissible limit (6400 N); 0 without a low-back estimate.
-fn back_level(compression_n: Option<f64>) -> u8 {
+/// NIOSH's class of the L5/S1 compression — 0: within the action limit (3400 N), 1: above it,
+/// 2: above the maximum permissible limit (6400 N); 0 without a low-back estimate — and, above
+/// the action limit, the compression itself: NIOSH counts every compression within the limit as
+/// safe, while above it the risk of injury grows with the compression (Waters et al. 1993), so
+/// there a lower compression ranks better.
+fn back_key(compression_n: Option<f64>) -> (u8, f64) {
     let limits = crate::assess::low_back::BackParams::default();
     match compression_n {
-        Some(c) if c > limits.compression_max_limit_n => 2,
-        Some(c) if c > limits.compression_action_limit_n => 1,
-        _ => 0,
+        Some(c) if c > limits.compression_max_limit_n => (2, c),
+        Some(c) if c > limits.compression_action_limit_n => (1, c),
+        _ => (0, 0.0),
     }
 }
 
@@ -284,7 +288,8 @@ fn order_keys(a: &Key, b: &Key) -> Ordering {
         .then(a.problems.cmp(&b.problems))
         .then(a.exceeds.cmp(&b.exceeds))
         .then(b.exhausted_at_s.total_cmp(&a.exhausted_at_s))
-        .then(a.back.cmp(&b.back))
+        .then(a.back.0.cmp(&b.back.0))
+        .then(a.back.1.total_cmp(&b.back.1))
         .then(b.minutes_to_exhaustion.total_cmp(&a.minutes_to_exhaustion))
         .then(b.lowest_capacity.total_cmp(&a.lowest_capacity))
         .then(a.u_per_hour.total_cmp(&b.u_per_hour))

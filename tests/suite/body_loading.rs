@@ -25,7 +25,8 @@
 
 use nalgebra::{Matrix2xX, Matrix3xX, Point3, Vector2, Vector3};
 use posture_opt::body::stance::{
-    Foot, GroundReaction, Stance, cop_jacobian, foot_loads, ground_reaction, settle_internal_force,
+    Foot, GroundReaction, InternalWrench, Stance, cop_jacobian, foot_loads, ground_reaction,
+    settle_internal_force,
 };
 use posture_opt::body::worker::{
     LEFT_FOOT_LINK, LEFT_HAND_FRAME, PELVIS_JOINTS, RIGHT_FOOT_LINK, RIGHT_HAND_FRAME, Worker,
@@ -103,7 +104,7 @@ struct Solved {
     d: StaticsData,
     before: GroundReaction,
     after: GroundReaction,
-    lambda: f64,
+    wrench: InternalWrench,
     tau_before_settle: Vec<f64>,
 }
 
@@ -121,13 +122,13 @@ fn solve(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Solved {
     apply_loads(m, &mut d, &all, &GRAVITY_M_S2);
     let tau_before_settle = d.tau_nm.iter().copied().collect();
     let mut after = r;
-    let mut jac = Matrix3xX::zeros(m.nq());
-    let lambda = settle_internal_force(m, &mut d, &s.stance, &mut after, &s.actuated, &mut jac);
+    let mut scratch = Matrix3xX::zeros(m.nq());
+    let wrench = settle_internal_force(m, &mut d, &s.stance, &mut after, &s.actuated, &mut scratch);
     Solved {
         d,
         before: r,
         after,
-        lambda,
+        wrench,
         tau_before_settle,
     }
 }
@@ -141,6 +142,49 @@ fn torques_with(s: &Setup, q: &[f64], hands: &[PointLoad], r: &GroundReaction) -
     all.extend_from_slice(&foot_loads(&s.m, &d, &s.stance, r));
     apply_loads(&s.m, &mut d, &all, &GRAVITY_M_S2);
     d.tau_nm.iter().copied().collect()
+}
+
+/// Torques with hands, the given reaction and an extra internal wrench (`+dl e` force at
+/// `at[0]` and `+dm` moment on the left foot, the opposite on the right at `at[1]`), applied
+/// afresh.
+#[allow(clippy::too_many_arguments)]
+fn torques_with_extra(
+    s: &Setup,
+    q: &[f64],
+    hands: &[PointLoad],
+    r: &GroundReaction,
+    at: [Vector3<f64>; 2],
+    e: Vector3<f64>,
+    dl: f64,
+    dm: Vector2<f64>,
+) -> Vec<f64> {
+    let mut d = StaticsData::new(&s.m, 6);
+    forward_kinematics(&s.m, &mut d, q);
+    mass_moments(&s.m, &mut d);
+    let mut all = hands.to_vec();
+    all.extend_from_slice(&foot_loads(&s.m, &d, &s.stance, r));
+    for (i, sign) in [(0usize, 1.0), (1usize, -1.0)] {
+        let link = s.stance.feet[i].link;
+        let (rot, pos) = d.link_pose(&s.m, link);
+        all.push(PointLoad {
+            link,
+            point_in_link_m: rot.transpose() * (at[i] - pos),
+            force_n: sign * dl * e,
+            moment_nm: sign * Vector3::new(dm.x, dm.y, 0.0),
+        });
+    }
+    apply_loads(&s.m, &mut d, &all, &GRAVITY_M_S2);
+    d.tau_nm.iter().copied().collect()
+}
+
+/// Where a point lies in a foot's sole: (along the sole, across it), from its centre, by hand
+/// from the link's pose and box.
+fn in_sole(m: &BodyModel, d: &StaticsData, link: usize, p: &Vector3<f64>) -> Vector2<f64> {
+    let (rot, _) = d.link_pose(m, link);
+    let o = p - sole_centre(m, d, link);
+    let u = Vector2::new(rot[(0, 0)], rot[(1, 0)]).normalize();
+    let v = Vector2::new(rot[(0, 1)], rot[(1, 1)]).normalize();
+    Vector2::new(o.xy().dot(&u), o.xy().dot(&v))
 }
 
 /// A posture from numbers in 0..1: pelvis translations within ±5 cm (height −20..+5 cm), every
@@ -227,7 +271,7 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     );
     // the free moment: what the vertical-axis moment leaves after p × F
     let t_z = mg.z - (p.x * fg.y - p.y * fg.x);
-    prop_assert!((r.free_moment_nm[0] + r.free_moment_nm[1] - t_z).abs() < 1e-9 * weight);
+    prop_assert!((r0.free_moment_nm[0] + r0.free_moment_nm[1] - t_z).abs() < 1e-9 * weight);
 
     // the lever rule
     let cl = sole_centre(m, d, s.stance.feet[0].link);
@@ -241,14 +285,14 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     );
     prop_assert!((r.force_n[0].z - share * fg.z).abs() < 1e-9 * weight);
     prop_assert!((r.force_n[1].z - (1.0 - share) * fg.z).abs() < 1e-9 * weight);
-    prop_assert!((r.free_moment_nm[0] - share * t_z).abs() < 1e-9 * weight);
+    prop_assert!((r0.free_moment_nm[0] - share * t_z).abs() < 1e-9 * weight);
     let delta = p - (share * cl2 + (1.0 - share) * cr2);
     for (i, c) in [cl2, cr2].iter().enumerate() {
         let pi = Vector3::new(c.x + delta.x, c.y + delta.y, 0.0);
         prop_assert!(
-            (r.cop_m[i] - pi).norm() < 1e-12,
+            (r0.cop_m[i] - pi).norm() < 1e-12,
             "foot {i} CoP {} vs {pi}",
-            r.cop_m[i]
+            r0.cop_m[i]
         );
     }
     // before settling each force points at A = p + F h/F_z, h the CoM height
@@ -264,8 +308,44 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     }
     // settling adds ±λe, e horizontal from the right sole to the left one
     let e = Vector3::new(cl.x - cr.x, cl.y - cr.y, 0.0).normalize();
-    prop_assert!((r.force_n[0] - r0.force_n[0] - sv.lambda * e).norm() < 1e-9 * weight);
-    prop_assert!((r.force_n[1] - r0.force_n[1] + sv.lambda * e).norm() < 1e-9 * weight);
+    let w = sv.wrench;
+    prop_assert!((r.force_n[0] - r0.force_n[0] - w.lambda_n * e).norm() < 1e-9 * weight);
+    prop_assert!((r.force_n[1] - r0.force_n[1] + w.lambda_n * e).norm() < 1e-9 * weight);
+    // and the moments ±m move each foot's centre of pressure by σ(−m_y, m_x)/F_z, on its sole
+    // (or no farther off it than before); when the soles bound the moments, one bound is met
+    let mut on_edge = r.force_n.iter().any(|f| f.z <= 0.0);
+    for (i, sigma) in [(0usize, 1.0), (1usize, -1.0)] {
+        let link = s.stance.feet[i].link;
+        let fz = r.force_n[i].z;
+        let shift = if fz > 0.0 {
+            sigma * Vector3::new(-w.moment_nm.y, w.moment_nm.x, 0.0) / fz
+        } else {
+            Vector3::zeros()
+        };
+        prop_assert!((r.cop_m[i] - r0.cop_m[i] - shift).norm() < 1e-9);
+        let (before, after) = (
+            in_sole(m, d, link, &r0.cop_m[i]),
+            in_sole(m, d, link, &r.cop_m[i]),
+        );
+        let foot = &s.stance.feet[i];
+        for (a, half) in [(0, foot.half_length_m), (1, foot.half_width_m)] {
+            let bound = half.max(before[a].abs());
+            prop_assert!(
+                after[a].abs() <= bound + 1e-9,
+                "foot {i} axis {a}: CoP {} off the sole ({bound})",
+                after[a]
+            );
+            on_edge |= (after[a].abs() - bound).abs() < 1e-9;
+        }
+    }
+    prop_assert!((0.0..=1.0).contains(&w.sole_factor));
+    if w.sole_factor < 1.0 {
+        prop_assert!(
+            on_edge,
+            "moments cut to {} with no sole edge met and both feet loaded",
+            w.sole_factor
+        );
+    }
 
     // vertical forces ≥ 0 inside the support polygon
     if r.margin_m >= 0.0 {
@@ -282,8 +362,10 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
         prop_assert_eq!(fl[i].moment_nm, Vector3::new(0.0, 0.0, r.free_moment_nm[i]));
     }
 
-    // settling: stationary sum of squared actuated torques along λ, a minimum; joints that
-    // carry no foot keep their torques
+    // settling: the sum of squared actuated torques is least along λ (applied at the centres of
+    // pressure before settling, as documented), and, when the soles allow the least-effort
+    // moments, along every moment too; joints that carry no foot keep their
+    // torques
     let cost = |tau: &[f64]| -> f64 {
         tau.iter()
             .zip(&s.actuated)
@@ -293,14 +375,20 @@ fn check_standing(s: &Setup, q: &[f64], hands: &[PointLoad]) -> Result<(), TestC
     };
     let settled: Vec<f64> = d.tau_nm.iter().copied().collect();
     let c0 = cost(&settled);
-    for dl in [-1.0, -1e-2, 1e-2, 1.0] {
-        let mut rr = *r;
-        rr.force_n[0] += dl * e;
-        rr.force_n[1] -= dl * e;
-        let c = cost(&torques_with(s, q, hands, &rr));
+    let mut moves = vec![];
+    for step in [-1.0, -1e-2, 1e-2, 1.0] {
+        moves.push((step, Vector2::zeros()));
+        if w.sole_factor == 1.0 {
+            moves.push((0.0, Vector2::new(step, 0.0)));
+            moves.push((0.0, Vector2::new(0.0, step)));
+            moves.push((step, Vector2::new(step, -step)));
+        }
+    }
+    for (dl, dm) in moves {
+        let c = cost(&torques_with_extra(s, q, hands, r, r0.cop_m, e, dl, dm));
         prop_assert!(
             c >= c0 - 1e-9 * c0.max(1.0),
-            "λ{dl:+}: cost {c} < settled {c0}"
+            "λ{dl:+}, m{dm:?}: cost {c} < settled {c0}"
         );
     }
     let legs = ["hip", "knee", "ankle"];

@@ -167,8 +167,10 @@ fn same(a: &Value, b: &Value, what: &str) {
 }
 
 /// RANKING_RULE, written out from its text: feasible first, then no load above strength, then no
-/// exhaustion within the task (later better), then longer time to exhaustion at this pace, then
-/// higher lowest capacity, then lower U per hour of simulated work, then lower worst RULA.
+/// exhaustion within the task (later better), then L5/S1 compression by NIOSH's class (within
+/// 3400 N, above, above 6400 N) and above 3400 N the lower, then longer time to exhaustion at this
+/// pace, then higher lowest capacity, then lower U per hour of simulated work, then lower worst
+/// RULA.
 fn rule_order(a: &Value, b: &Value) -> Ordering {
     let feasible = |o: &Value| o["feasible"].as_bool().unwrap();
     let exceeds = |o: &Value| {
@@ -181,10 +183,17 @@ fn rule_order(a: &Value, b: &Value) -> Ordering {
     let lowest = |o: &Value| num(&o["lowest_capacity"]).unwrap();
     let u_h = |o: &Value| num(&o["u_per_hour_min"]).unwrap();
     let rula = |o: &Value| o["rula_max"].as_i64().unwrap_or(0);
+    let back = |o: &Value| match num(&o["back_compression_max_n"]) {
+        Some(c) if c > 6400.0 => (2, c),
+        Some(c) if c > 3400.0 => (1, c),
+        _ => (0, 0.0),
+    };
     feasible(b)
         .cmp(&feasible(a))
         .then(exceeds(a).cmp(&exceeds(b)))
         .then(exhausted_at(b).total_cmp(&exhausted_at(a)))
+        .then(back(a).0.cmp(&back(b).0))
+        .then(back(a).1.total_cmp(&back(b).1))
         .then(minutes(b).total_cmp(&minutes(a)))
         .then(lowest(b).total_cmp(&lowest(a)))
         .then(u_h(a).total_cmp(&u_h(b)))
@@ -995,4 +1004,39 @@ fn sweep_shards_merge_into_the_unsharded_sweep() {
     write(d, "sweep2_other.json", serde_json::to_vec(&v).unwrap());
     cli(d, &["sweep", "--merge", "sweep1.json", "sweep2_other.json"])
         .bad(&["sweep2_other.json", "other files"]);
+}
+
+/// The shipped pallet pair: lifting 8 kg boxes from a pallet at 0.30 m, or from the same pallet
+/// on a lift table. Both are sustainable, both load L5/S1 above NIOSH's action limit, and the lift
+/// table lowers that compression (a shallower stoop): an ergonomist picks the lift table, and so
+/// must `compare`, whatever the two plans' near-equal fatigue says.
+#[test]
+fn compare_ranks_the_raised_pallet_first() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let v = json(
+        root,
+        &[
+            "compare",
+            "tasks/pallet.yaml",
+            "tasks/pallet_raised.yaml",
+            "--json",
+        ],
+    );
+    let layouts = v["layouts"].as_array().unwrap();
+    let by_file = |f: &str| {
+        layouts
+            .iter()
+            .find(|l| l["file"].as_str().unwrap().ends_with(f))
+            .unwrap()
+    };
+    let (floor, raised) = (by_file("pallet.yaml"), by_file("pallet_raised.yaml"));
+    let back = |l: &Value| num(&l["back_compression_max_n"]).unwrap();
+    assert!(
+        back(raised) < back(floor),
+        "L5/S1 {} N raised vs {} N on the floor",
+        back(raised),
+        back(floor)
+    );
+    assert_eq!(raised["rank"], 1, "{v:#}");
+    assert_eq!(floor["rank"], 2);
 }

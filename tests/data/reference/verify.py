@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Self-checks of the reference implementation; writes results/verification.json.
+"""Self-checks of the reference implementation; writes results/verification.json (or --out FILE).
 
 1. fatigue: closed-form steps vs numerical ODE integration (scipy solve_ivp, rtol 1e-12), and a
    whole schedule (3 cycles of a task) integrated numerically vs the step-by-step closed forms;
@@ -8,6 +8,11 @@
 4. statics: unactuated (pelvis) torques ~ 0 after the ground split; the split reproduces the
    ground wrench; d(sum tau_act^2)/d lambda = 0; holding torques vs an independent computation
    (finite differences of the potential energy plus J^T F from finite differences of positions);
+4b. the internal wrench and the soles (steps 4-5 of the split), recomputed here with Jacobians
+   from finite differences: (a) no pelvis torque, forces and moments balance; (b) w* minimises
+   sum tau_act^2 (no perturbation lowers it), lambda re-solved optimally when alpha < 1; (c) the
+   reported centres of pressure stay within their soles (or do not move outward), a bound is
+   active when alpha < 1; (d) the reported per-foot wrench equals the applied one;
 5. NLP Jacobians (hands, feet, torque identity, clearances, balance) vs finite differences;
 6. distances vs brute-force sampling.
 """
@@ -223,16 +228,271 @@ def check_statics():
     rec("internal force lambda optimal: |sum g_j tau_j| [N m^2]", worst_lam, worst_lam < 1e-8)
 
 
+# ----------------------------------------------------------------------------------------------
+# Steps 4-5 of the ground split (internal wrench, soles bounding the moments), checked with
+# quantities recomputed here: link masses and positions from forward kinematics, the soles from the
+# URDF text, foot Jacobians from finite differences of positions and rotations (no Pinocchio
+# Jacobians), the actuated set from the strength file.
+# ----------------------------------------------------------------------------------------------
+def _soles_from_urdf(path):
+    """Sole of each foot: bottom face of the link's first <collision> box (centre in the link
+    frame, half-length along x, half-width along y)."""
+    import xml.etree.ElementTree as ET
+    root = ET.parse(path).getroot()
+    out = {}
+    for link in root.findall("link"):
+        if link.get("name") not in ("l_foot", "r_foot"):
+            continue
+        col = link.findall("collision")[0]
+        o = col.find("origin")
+        xyz = np.array([float(v) for v in o.get("xyz", "0 0 0").split()])
+        assert o.get("rpy") in (None, "0 0 0"), "sole boxes are axis-aligned with their links here"
+        size = np.array([float(v) for v in col.find("geometry").find("box").get("size").split()])
+        out[link.get("name")] = (xyz - np.array([0, 0, size[2] / 2]), size[0] / 2, size[1] / 2)
+    return out
+
+
+def _fd_frame_jacobians(body, q, fid, h=1e-6):
+    """Positional Jacobian of the frame origin and angular Jacobian (world axes) by central
+    differences of the frame placement."""
+    import pinocchio as pin
+    m, d = body.model, body.data
+
+    def pose(qq):
+        pin.forwardKinematics(m, d, qq)
+        pin.updateFramePlacements(m, d)
+        return d.oMf[fid].translation.copy(), d.oMf[fid].rotation.copy()
+
+    o0, R0 = pose(q)
+    Jo = np.zeros((3, body.nq))
+    Jw = np.zeros((3, body.nq))
+    for i in range(body.nq):
+        qp = q.copy()
+        qp[i] += h
+        qm = q.copy()
+        qm[i] -= h
+        op, Rp = pose(qp)
+        om, Rm = pose(qm)
+        Jo[:, i] = (op - om) / (2 * h)
+        W = (Rp - Rm) / (2 * h) @ R0.T
+        Jw[:, i] = (W[2, 1] - W[1, 2]) / 2, (W[0, 2] - W[2, 0]) / 2, (W[1, 0] - W[0, 1]) / 2
+    pose(q)
+    return o0, R0, Jo, Jw
+
+
+def _ground_wrench(body, q, FR, FL):
+    """-(resultant of gravity and the hand forces) and its moment about the world origin."""
+    import pinocchio as pin
+    m, d = body.model, body.data
+    pin.forwardKinematics(m, d, q)
+    pin.updateFramePlacements(m, d)
+    g = body.gravity
+    F = np.zeros(3)
+    Mo = np.zeros(3)
+    for j in range(1, m.njoints):
+        I = m.inertias[j]
+        if I.mass > 0:
+            x = d.oMi[j].act(I.lever)
+            F += I.mass * g
+            Mo += np.cross(x, I.mass * g)
+    for hand, Fh in (("r_hand_grip", FR), ("l_hand_grip", FL)):
+        x = d.oMf[m.getFrameId(hand)].translation
+        F += Fh
+        Mo += np.cross(x, Fh)
+    return -F, -Mo
+
+
+def check_internal_wrench():
+    import yaml
+    rng = np.random.default_rng(2024)
+    sig = {"l_foot": 1.0, "r_foot": -1.0}
+    hand_loads = [("none", np.zeros(3), np.zeros(3)),
+                  ("right 40 N down", np.array([0, 0, -40.0]), np.zeros(3)),
+                  ("both 60 N forward", np.array([60.0, 0, 0]), np.array([60.0, 0, 0])),
+                  ("left 80 N sideways", np.zeros(3), np.array([0, 80.0, 0])),
+                  ("mixed", np.array([0, -50.0, 30.0]), np.array([20.0, 0, -60.0]))]
+    worst = dict(unact=0.0, force=0.0, moment=0.0, opt_star=0.0, opt_final=0.0, grad_star=0.0,
+                 grad_lam=0.0, wstar=0.0, sole=0.0, outward=0.0, active=0.0, wrench=0.0,
+                 wrench_total=0.0, moments_scaled=0.0)
+    n = dict(cases=0, alpha1=0, alpha_mid=0, alpha0_sole=0, alpha0_unloaded=0, started_outside=0)
+    for key in ("shelf", "bench_assembly"):
+        t = M.load_task(key)
+        b = t.body
+        soles = _soles_from_urdf(b.urdf_path)
+        strength = os.path.splitext(b.urdf_path)[0] + ".strength.yaml"
+        if not os.path.exists(strength):
+            strength = os.path.join(os.path.dirname(b.urdf_path), "worker.strength.yaml")
+        with open(strength) as fh:
+            unact = set(yaml.safe_load(fh)["unactuated"])
+        act = np.array([i for i, nm in enumerate(b.joint_names) if nm not in unact])
+        unact_i = np.array([i for i, nm in enumerate(b.joint_names) if nm in unact])
+        pr = M.Problem(t)
+        nlp = JointNLP(pr)
+        postures = []
+        fams = list(S.FAMILIES.values())
+        for trial in range(8):
+            fam = fams[rng.integers(len(fams))]
+            postures.append(S.ik_project(nlp.pm[0], S.template(b, t.rest_q, fam, rng)))
+        for trial in range(4):
+            # random actuated joints within limits, pelvis at rest (the feet are then anywhere)
+            q = t.rest_q.copy()
+            lo, hi = np.maximum(b.lower[act], -2.0), np.minimum(b.upper[act], 2.0)
+            q[act] = lo + rng.random(len(act)) * (hi - lo)
+            postures.append(q)
+        for q in postures:
+            feet = {}
+            for foot in ("l_foot", "r_foot"):
+                o, R, Jo, Jw = _fd_frame_jacobians(b, q, b.fid[foot])
+                cen, au, av = soles[foot]
+                c = o + R @ cen
+                u = R[:2, 0] / np.linalg.norm(R[:2, 0])
+                v = R[:2, 1] / np.linalg.norm(R[:2, 1])
+                feet[foot] = dict(o=o, c=c, u=u, v=v, au=au, av=av, Jo=Jo, Jw=Jw)
+            dLR = (feet["l_foot"]["c"] - feet["r_foot"]["c"])[:2]
+            e = np.array([dLR[0], dLR[1], 0.0]) / np.linalg.norm(dLR)
+            for lname, FR, FL in hand_loads:
+                st = M.statics(b, q, FR, FL, details=True)
+                n["cases"] += 1
+                tau = st["tau"]
+                Fg, Mg = _ground_wrench(b, q, FR, FL)
+                # (a) unactuated torques zero; the feet's loads balance the ground wrench
+                worst["unact"] = max(worst["unact"], float(np.max(np.abs(tau[unact_i]))))
+                Fs = sum(st["foot_loads"][f][1] for f in feet)
+                Ms = sum(np.cross(st["foot_loads"][f][0], st["foot_loads"][f][1]) + st["foot_loads"][f][2]
+                         for f in feet)
+                worst["force"] = max(worst["force"], float(np.max(np.abs(Fs - Fg))))
+                worst["moment"] = max(worst["moment"], float(np.max(np.abs(Ms - Mg))))
+                # internal-wrench columns from the finite-difference Jacobians
+                cols = np.zeros((b.nq, 3))
+                for f, ft in feet.items():
+                    pi = st["foot_loads"][f][0]
+                    r = pi - ft["o"]
+                    Jp = ft["Jo"] - np.cross(r[:, None], ft["Jw"], axis=0)   # J_p = J_o - [r]x J_w
+                    cols[:, 0] -= sig[f] * (Jp.T @ e)
+                    cols[:, 1] -= sig[f] * ft["Jw"][0]
+                    cols[:, 2] -= sig[f] * ft["Jw"][1]
+                Ga = cols[act]
+                w = np.array([st["lam"], st["m_x"], st["m_y"]])
+                tau0a = tau[act] - Ga @ w            # the torques before the internal wrench
+                ta_star = tau0a + Ga @ st["w_star"]
+
+                def sumsq(wv):
+                    r_ = tau0a + Ga @ wv
+                    return float(r_ @ r_)
+
+                # (b) w* minimises sum tau_act^2: no direction lowers it (unit-scaled steps)
+                f_star = sumsq(st["w_star"])
+                dirs = list(np.vstack([np.eye(3), -np.eye(3)])) + list(rng.normal(size=(12, 3)))
+                for dvec in dirs:
+                    dvec = dvec / np.linalg.norm(dvec)
+                    for eps in (1e-3, 1e-1, 1.0):
+                        dec = f_star - sumsq(st["w_star"] + eps * dvec * np.array([10.0, 1.0, 1.0]))
+                        worst["opt_star"] = max(worst["opt_star"], dec / max(f_star, 1.0))
+                gs = Ga.T @ ta_star / (np.linalg.norm(Ga, axis=0) * max(np.linalg.norm(ta_star), 1e-12))
+                worst["grad_star"] = max(worst["grad_star"], float(np.max(np.abs(gs))))
+                # w* against an independent least-squares solve (well-conditioned G only)
+                if np.linalg.cond(Ga) < 1e6:
+                    wl = np.linalg.lstsq(Ga, -tau0a, rcond=None)[0]
+                    worst["wstar"] = max(worst["wstar"], float(np.max(np.abs(wl - st["w_star"]) /
+                                                                    (np.abs(wl) + 1.0))))
+                alpha = st["alpha"]
+                ms = st["w_star"][1:]
+                worst["moments_scaled"] = max(worst["moments_scaled"],
+                                              float(np.max(np.abs(w[1:] - alpha * ms))))
+                if alpha == 1.0:
+                    n["alpha1"] += 1
+                    for dvec in dirs:
+                        dvec = dvec / np.linalg.norm(dvec)
+                        dec = sumsq(w) - sumsq(w + 1e-2 * dvec * np.array([10.0, 1.0, 1.0]))
+                        worst["opt_final"] = max(worst["opt_final"], dec / max(sumsq(w), 1.0))
+                else:
+                    # lambda re-solved for the bounded moments: optimal along lambda
+                    r_ = tau0a + Ga @ w
+                    gl = abs(float(Ga[:, 0] @ r_)) / (np.linalg.norm(Ga[:, 0]) * max(np.linalg.norm(r_), 1e-12))
+                    worst["grad_lam"] = max(worst["grad_lam"], gl)
+                # (c) the reported centres of pressure within the soles (or not moved outward)
+                act_ratio = 0.0
+                any_unloaded = False
+                for f, ft in feet.items():
+                    pi = st["foot_loads"][f][0]
+                    cop = st["foot_cop"][f]
+                    worst["sole"] = max(worst["sole"], abs(float(cop[2])))
+                    if st["foot_loads"][f][1][2] <= 0.0:
+                        any_unloaded = True
+                    o_h = (pi - ft["c"])[:2]
+                    d_h = (cop - ft["c"])[:2]
+                    for ax, half in ((ft["u"], ft["au"]), (ft["v"], ft["av"])):
+                        a0 = float(o_h @ ax)
+                        a1 = float(d_h @ ax)
+                        if abs(a0) > half:
+                            n["started_outside"] += 1
+                            worst["outward"] = max(worst["outward"], abs(a1) - abs(a0))
+                        else:
+                            worst["sole"] = max(worst["sole"], abs(a1) - half)
+                        act_ratio = max(act_ratio, abs(a1) / max(half, abs(a0)))
+                if alpha < 1.0:
+                    if alpha == 0.0 and any_unloaded and np.any(ms != 0.0):
+                        n["alpha0_unloaded"] += 1
+                    else:
+                        n["alpha_mid" if alpha > 0 else "alpha0_sole"] += 1
+                        worst["active"] = max(worst["active"], 1.0 - act_ratio)
+                # (d) the reported per-foot wrench is the applied wrench
+                Mtot = np.zeros(3)
+                for f in feet:
+                    pi, Fi, _ = st["foot_loads"][f]
+                    share = st["s"] if f == "l_foot" else 1.0 - st["s"]
+                    Mi = np.array([sig[f] * st["m_x"], sig[f] * st["m_y"], share * st["T"]])
+                    cop = st["foot_cop"][f]
+                    rep = np.cross(cop, Fi) + np.array([0, 0, st["foot_free_moment"][f]])
+                    app = np.cross(pi, Fi) + Mi
+                    worst["wrench"] = max(worst["wrench"], float(np.max(np.abs(rep - app))))
+                    Mtot += rep
+                worst["wrench_total"] = max(worst["wrench_total"], float(np.max(np.abs(Mtot - Mg))))
+    rec(f"internal wrench: cases (postures x hand loads), alpha = 1 / 0 < alpha < 1 / alpha = 0 at a "
+        f"sole bound / alpha = 0 for an unloaded foot / axes starting outside a sole",
+        [n["cases"], n["alpha1"], n["alpha_mid"], n["alpha0_sole"], n["alpha0_unloaded"],
+         n["started_outside"]],
+        n["alpha1"] > 0 and n["alpha_mid"] > 0 and n["alpha0_sole"] + n["alpha0_unloaded"] > 0)
+    rec("(a) split: max |unactuated (pelvis) torque| [N m]", worst["unact"], worst["unact"] < 1e-8)
+    rec("(a) split: feet forces = ground force (independent resultant) [N]", worst["force"],
+        worst["force"] < 1e-9)
+    rec("(a) split: feet moments = ground moment about the origin (independent) [N m]",
+        worst["moment"], worst["moment"] < 1e-9)
+    rec("(b) w*: no perturbation of (lambda, m_x, m_y) lowers sum tau_act^2 (max relative decrease)",
+        worst["opt_star"], worst["opt_star"] < 1e-9)
+    rec("(b) w*: |G^T tau| / (|g_k| |tau|) with FD Jacobians", worst["grad_star"], worst["grad_star"] < 1e-7)
+    rec("(b) w* vs numpy.linalg.lstsq on the FD-Jacobian G (max rel err)", worst["wstar"], worst["wstar"] < 1e-5)
+    rec("(b) alpha = 1: the final w is not improved by any perturbation (max relative decrease)",
+        worst["opt_final"], worst["opt_final"] < 1e-9)
+    rec("(b) alpha < 1: lambda optimal for the bounded moments, |g_lam . tau| / (|g_lam| |tau|)",
+        worst["grad_lam"], worst["grad_lam"] < 1e-7)
+    rec("(b) final moments = alpha (m*_x, m*_y) (max abs err)", worst["moments_scaled"],
+        worst["moments_scaled"] < 1e-12)
+    rec("(c) reported centres of pressure within the soles [m beyond; also |z|]", worst["sole"],
+        worst["sole"] < 1e-9)
+    rec("(c) a centre of pressure starting outside its sole did not move outward [m]",
+        worst["outward"], worst["outward"] < 1e-9)
+    rec("(c) alpha < 1 (all feet loaded): a sole bound is active (1 - max |coord|/bound)",
+        worst["active"], worst["active"] < 1e-9)
+    rec("(d) per-foot reported wrench (force at the CoP + free moment) = applied wrench [N m]",
+        worst["wrench"], worst["wrench"] < 1e-9)
+    rec("(d) the reported wrenches sum to the ground moment [N m]", worst["wrench_total"],
+        worst["wrench_total"] < 1e-9)
+
+
 def check_nlp_jacobians():
     worst = {}
-    for key in ("shelf", "pallet"):
+    alphas = []
+    # (lean_back and twist_left give postures whose sole bound is active with 0 < alpha < 1)
+    for key, fams in (("shelf", ("stoop_mild", "lean_back")), ("pallet", ("stoop_mild",)),
+                      ("bench_assembly", ("twist_left", "upright_internal_rot"))):
         t = M.load_task(key)
         pr = M.Problem(t)
         nlp = JointNLP(pr)
         rng = np.random.default_rng(11)
-        for gi in range(t.P):
+        for gi, fam in ((gi, fam) for fam in fams for gi in range(t.P)):
             pm = nlp.pm[gi]
-            q = S.ik_project(pm, S.template(t.body, t.rest_q, S.FAMILIES["stoop_mild"], rng))
+            q = S.ik_project(pm, S.template(t.body, t.rest_q, S.FAMILIES[fam], rng))
             # stay 1e-4 inside the joint limits: the strength curves are held constant beyond
             # their tables, so a central difference straddling a table end (often a joint limit)
             # is not a derivative
@@ -242,6 +502,22 @@ def check_nlp_jacobians():
             pm._cache_key = None
             v, Jq, Jf = pm.eq(q, f, jac=True)
             vi, Ji = pm.ineq(q, jac=True)
+            # the statics' derivative the NLP uses (central differences, FD_STEP) against central
+            # differences of the new split at a 10x larger step (a kink of alpha between them
+            # would show); alpha of the posture recorded to show which branch was exercised
+            st = M.statics(t.body, q, pm.FR, pm.FL, details=True)
+            alphas.append(round(float(st["alpha"]), 4))
+            dtau = pm.evaluate(q, True)["dtau"]
+            h2 = 1e-5
+            fd2 = np.zeros_like(dtau)
+            for i in range(len(q)):
+                qp = q.copy()
+                qp[i] += h2
+                qm = q.copy()
+                qm[i] -= h2
+                fd2[:, i] = (pm._statics(qp)[0] - pm._statics(qm)[0]) / (2 * h2)
+            worst["statics torques d tau/dq vs FD step 1e-5"] = max(
+                worst.get("statics torques d tau/dq vs FD step 1e-5", 0.0), float(np.max(np.abs(dtau - fd2))))
             h = 1e-6
             FDq = np.zeros_like(Jq)
             FDi = np.zeros_like(Ji)
@@ -275,6 +551,8 @@ def check_nlp_jacobians():
             worst["clearances (median row)"] = max(worst.get("clearances (median row)", 0.0), float(np.median(e)))
             worst["clearances (max row)"] = max(worst.get("clearances (max row)", 0.0), float(np.max(e)))
             worst["balance"] = max(worst.get("balance", 0.0), float(np.max(np.abs(Ji[nd:] - FDi[nd:]))))
+    rec("NLP Jacobian postures: alpha of the sole bound (shelf, pallet, bench_assembly phases)", alphas,
+        any(0.0 < a < 1.0 for a in alphas))
     for k, v in worst.items():
         rec(f"NLP Jacobian vs FD: {k} (max abs err)", v, v < 1e-4)
 
@@ -318,10 +596,14 @@ if __name__ == "__main__":
     check_fatigue_grad()
     check_pchip()
     check_statics()
+    check_internal_wrench()
     check_nlp_jacobians()
     check_distances()
     here = os.path.dirname(os.path.abspath(__file__))
-    os.makedirs(os.path.join(here, "results"), exist_ok=True)
-    with open(os.path.join(here, "results", "verification.json"), "w") as fh:
+    out = os.path.join(here, "results", "verification.json")
+    if "--out" in sys.argv:
+        out = sys.argv[sys.argv.index("--out") + 1]
+    os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
+    with open(out, "w") as fh:
         json.dump(OUT, fh, indent=1)
     print("all ok" if all(v["ok"] for v in OUT.values()) else "SOME CHECKS FAILED")

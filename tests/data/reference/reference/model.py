@@ -4,7 +4,8 @@ Everything here follows the written specification only:
   * the task, its distinct phases, the stance and the obstacles;
   * the body (URDF via Pinocchio as a fixed-base tree rooted at `floor`), its collision shapes;
   * strength (MVC with PCHIP posture curves), half-joint loads;
-  * statics with the 4-step ground-reaction split;
+  * statics with the 5-step ground-reaction split (internal wrench (lambda, m_x, m_y) between the
+    feet by minimum-norm least squares, the moments bounded by the soles);
   * the fatigue schedule (reference.fatigue) and the constraints.
 """
 import math
@@ -529,6 +530,8 @@ def statics(body, q, F_R, F_L, M_R=None, M_L=None, details=False):
     A = np.array([p[0], p[1], 0.0]) + F * h / F[2]
     e = np.array([dLR[0], dLR[1], 0.0]) / np.linalg.norm(dLR)
     g_lam = np.zeros(body.nq)
+    g_x = np.zeros(body.nq)
+    g_y = np.zeros(body.nq)
     foot_loads = {}
     for foot in ("l_foot", "r_foot"):
         pi = np.array([cs[foot][0] + delta[0], cs[foot][1] + delta[1], 0.0])
@@ -536,20 +539,103 @@ def statics(body, q, F_R, F_L, M_R=None, M_L=None, details=False):
         Mi = np.array([0, 0, shares[foot] * T])
         Jp = body.point_jac(body.fid[foot], pi, Jf[foot])
         tau -= Jp.T @ Fi + Jf[foot][3:].T @ Mi
-        sign = 1.0 if foot == "l_foot" else -1.0
+        sign = SIGMA[foot]
         g_lam -= sign * (Jp.T @ e)
+        # J_w(foot)^T x_hat, J_w(foot)^T y_hat: rows 3, 4 of the LOCAL_WORLD_ALIGNED frame Jacobian
+        g_x -= sign * Jf[foot][3]
+        g_y -= sign * Jf[foot][4]
         foot_loads[foot] = (pi, Fi, Mi)
-    # 4. internal force minimising the squared actuated torques
-    ga = g_lam[body.act_idx]
-    ta = tau[body.act_idx]
-    lam = -float(ga @ ta) / float(ga @ ga) if ga @ ga > 0 else 0.0
-    tau = tau + lam * g_lam
+    # 4. internal wrench w = (lambda, m_x, m_y) minimising the squared actuated torques
+    G = np.empty((body.nq, 3))
+    G[:, 0], G[:, 1], G[:, 2] = g_lam, g_x, g_y
+    Ga = G[body.act_idx]
+    tau0a = tau[body.act_idx]
+    w_star = min_norm_lstsq(Ga, tau0a)
+    # 5. the soles bound the moments
+    Fz_i = {foot: float(foot_loads[foot][1][2]) for foot in foot_loads}
+    m_star = w_star[1:]
+    axes = {}
+    for foot in ("l_foot", "r_foot"):
+        R = d.oMf[body.fid[foot]].rotation
+        nu, nv = math.hypot(R[0, 0], R[1, 0]), math.hypot(R[0, 1], R[1, 1])
+        axes[foot] = ((R[0, 0] / nu, R[1, 0] / nu), (R[0, 1] / nv, R[1, 1] / nv))
+    alpha = sole_alpha(m_star, F[2], Fz_i, delta, axes, {f: body.sole[f]["half"] for f in cs})
+    if alpha == 1.0:
+        w = w_star.copy()
+    else:
+        mx, my = alpha * m_star[0], alpha * m_star[1]
+        gl = Ga[:, 0]
+        gg = float(gl @ gl)
+        lam_ = -float(gl @ (tau0a + mx * Ga[:, 1] + my * Ga[:, 2])) / gg if gg > 0 else 0.0
+        w = np.array([lam_, mx, my])
+    tau0 = tau
+    tau = tau0 + G @ w
     if not details:
         return tau, p
-    foot_loads["l_foot"] = (foot_loads["l_foot"][0], foot_loads["l_foot"][1] + lam * e, foot_loads["l_foot"][2])
-    foot_loads["r_foot"] = (foot_loads["r_foot"][0], foot_loads["r_foot"][1] - lam * e, foot_loads["r_foot"][2])
-    return dict(tau=tau, p=p, T=T, s=s, lam=lam, com=com, F=F, M=Mg, h=h, A=A, c=cs,
-                foot_loads=foot_loads, xR=xR, xL=xL)
+    lam, mx, my = (float(v) for v in w)
+    cop, free = {}, {}
+    loads_final = {}
+    for foot in ("l_foot", "r_foot"):
+        sg = SIGMA[foot]
+        pi, Fi, Mi = foot_loads[foot]
+        Fi = Fi + sg * lam * e
+        Mi = Mi + sg * np.array([mx, my, 0.0])
+        loads_final[foot] = (pi, Fi, Mi)
+        if mx == 0.0 and my == 0.0:
+            D = np.zeros(2)
+        else:
+            D = sg * np.array([-my, mx]) / Fz_i[foot]
+        cop[foot] = np.array([pi[0] + D[0], pi[1] + D[1], 0.0])
+        free[foot] = shares[foot] * T - (D[0] * Fi[1] - D[1] * Fi[0])
+    return dict(tau=tau, p=p, T=T, s=s, lam=lam, m_x=mx, m_y=my, w=w, w_star=w_star, alpha=alpha,
+                tau0=tau0, G=G, e=e, delta=delta, sole_axes=axes, foot_Fz=Fz_i,
+                com=com, F=F, M=Mg, h=h, A=A, c=cs,
+                foot_loads=loads_final, foot_cop=cop, foot_free_moment=free, xR=xR, xL=xL)
+
+
+SIGMA = {"l_foot": 1.0, "r_foot": -1.0}
+EIG_CUTOFF = 1e-12
+
+
+def min_norm_lstsq(G, t):
+    """Minimum-norm w minimising |t + G w|^2: the minimum-norm solution of (G^T G) w = -G^T t,
+    eigenvalues of G^T G below EIG_CUTOFF x the largest treated as zero (section 2, step 4)."""
+    A = G.T @ G
+    rhs = -(G.T @ t)
+    mu, V = np.linalg.eigh(A)
+    top = float(mu.max())
+    if not top > 0.0:
+        return np.zeros(G.shape[1])
+    keep = mu >= EIG_CUTOFF * top
+    Vk = V[:, keep]
+    return Vk @ ((Vk.T @ rhs) / mu[keep])
+
+
+def sole_alpha(m_star, Fz, Fz_i, delta, axes, half):
+    """The largest alpha in [0, 1] keeping every foot's moved centre of pressure within
+    max(half-extent, its offset from the sole centre) along the foot's x and y axes (step 5).
+    delta: o_i = p_i - c_i (horizontal), the same for both feet; axes[foot] = (u_i, v_i)."""
+    if not Fz > 0.0:
+        return 0.0
+    mx, my = float(m_star[0]), float(m_star[1])
+    if mx == 0.0 and my == 0.0:
+        return 1.0
+    ox, oy = float(delta[0]), float(delta[1])
+    alpha = 1.0
+    for foot in ("l_foot", "r_foot"):
+        if not Fz_i[foot] > 0.0:
+            return 0.0
+        sg = SIGMA[foot] / Fz_i[foot]
+        Dx, Dy = -sg * my, sg * mx
+        for (ax, ay), a_half in zip(axes[foot], (float(half[foot][0]), float(half[foot][1]))):
+            a = ox * ax + oy * ay
+            b = Dx * ax + Dy * ay
+            B = max(a_half, abs(a))
+            if b > 0.0:
+                alpha = min(alpha, (B - a) / b)
+            elif b < 0.0:
+                alpha = min(alpha, (-B - a) / b)
+    return float(alpha) if alpha > 0.0 else 0.0
 
 
 def half_loads(body, q, tau):
@@ -771,6 +857,11 @@ class Problem:
                 loads={b.half_names[i]: float(f[i]) for i in range(b.H)},
                 mvc={b.half_names[i]: float(mvc[i]) for i in range(b.H)},
                 centre_of_pressure=st["p"].tolist(), left_share=st["s"], lambda_internal=st["lam"],
+                internal_wrench=dict(w_star=st["w_star"].tolist(), alpha=st["alpha"],
+                                     **{"lambda": st["lam"]}, m_x=st["m_x"], m_y=st["m_y"]),
+                feet={f: dict(centre_of_pressure=st["foot_cop"][f].tolist(),
+                              free_moment=float(st["foot_free_moment"][f]),
+                              force=st["foot_loads"][f][1].tolist()) for f in ("l_foot", "r_foot")},
                 com=st["com"].tolist(),
                 residuals=dict(
                     hand_error_m={h: float(np.linalg.norm(v)) for h, v in herr.items()},
