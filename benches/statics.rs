@@ -1,7 +1,7 @@
 //! Statics of the generated whole-body worker: forward kinematics, hand Jacobians and holding
 //! torques with a load in each hand; the same standing on both feet (the floor's reaction split
-//! between the feet and the internal wrench settled); and the analytic torque derivative. Compare with Pinocchio
-//! on the same URDF in the same run (see docs/body.md, "Speed").
+//! between the feet and the internal wrench settled); and the analytic torque derivative.
+//! Compare with Pinocchio on the same URDF in the same run (README, "Speed").
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::Matrix3xX;
