@@ -40,6 +40,9 @@ pub const EPSILON_U_MIN: f64 = 1e-3;
 /// MVC), so that a plan at the edge does not tip into exhaustion.
 pub const EXHAUSTION_MARGIN: f64 = 0.02;
 
+/// A joint this close to a limit (fraction of its range) is reported as at the limit.
+pub const AT_LIMIT_FRACTION: f64 = 0.01;
+
 /// Fraction of a joint's range, at each end, where the end-of-range penalty acts.
 pub const END_ZONE: f64 = 0.1;
 
@@ -429,6 +432,24 @@ impl Discomfort {
             total += a * x * x + END_WEIGHT * end_penalty((q[k] - lo) / range, self.ends[k]).0;
         }
         total
+    }
+
+    /// The joints of `q` clear of their limits by more than five times [`AT_LIMIT_FRACTION`] of
+    /// their range (per q index).
+    pub fn clear_of_limits(&self, q: &[f64]) -> Vec<bool> {
+        let mut clear = vec![true; q.len()];
+        for (k, _, _) in self.near_limits(q, 5.0 * AT_LIMIT_FRACTION) {
+            clear[k] = false;
+        }
+        clear
+    }
+
+    /// Whether `q` has a joint at a limit ([`AT_LIMIT_FRACTION`]) among those `clear` marks as
+    /// well clear of it: the margin keeps the verdict from hinging on a solver's last digits.
+    pub fn parks_beyond(&self, q: &[f64], clear: &[bool]) -> bool {
+        self.near_limits(q, AT_LIMIT_FRACTION)
+            .iter()
+            .any(|&(k, _, _)| clear[k])
     }
 
     /// Joints closer to a limit than `fraction` of their range: (q index, which end, distance

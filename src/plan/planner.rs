@@ -4,11 +4,24 @@
 //! **Across phases.** Phases with the same targets and hand forces share one posture (a group).
 //! The groups are optimised in turn, each with the others' loads fixed, against the same
 //! objective (total fatigue at the end of the task plus the groups' time-weighted discomfort);
-//! passes repeat until the objective falls by less than 10⁻⁵ (relative) or five passes are done.
+//! passes repeat until the objective falls by less than 10⁻⁴ (relative) or five passes are done.
 //! Every group solve starts from its current posture and only accepts steps that lower the
 //! objective, so the passes' objectives never increase ([`Summary::passes`] records them), and the
 //! sequence converges. The first pass searches globally ([`super::search`]); later passes and
 //! re-plans refine locally.
+//!
+//! **Cross-seeding.** The first pass searches each group with the others still at their
+//! nearest-to-neutral postures, so its choice of basin is made in the wrong context, and local
+//! passes cannot leave it. Once the passes have settled, one more pass searches every group from
+//! its own posture and from each other group's (neighbouring phases of a task often share a good
+//! posture family: a carry and a place, two picks), its own posture always among the finalists,
+//! then local passes resume. The round can only lower the objective (its start is kept unless a
+//! seed beats it), and it ends the search when it finds nothing better. With the discomfort term
+//! on, a round that parks a joint at a limit the plan before it kept well clear of is undone:
+//! that is how it lowers fatigue on the shelf tasks (the right shoulder extended to its limit and
+//! the trunk turned), which an ergonomist rejects, and the term's end penalty alone (weighed
+//! against fatigue) does not stop it. Every seed of the round is solved to convergence and the
+//! limit test has a five-fold margin, so the plan does not depend on the QP's precision (tested).
 //!
 //! **In time.** Each cycle holds every phase's posture for its duration and then rests, standing
 //! with the arms hanging. Every half-joint's capacity and U are updated with the exact closed
@@ -22,7 +35,9 @@
 //! joint load (sum of squared relative loads), and the nearest-to-neutral posture reaching the
 //! targets (discomfort only).
 
-use super::objective::{Discomfort, FatigueCost, LoadCost, NoLoadCost, SquaredLoads};
+use super::objective::{
+    AT_LIMIT_FRACTION, Discomfort, FatigueCost, LoadCost, NoLoadCost, SquaredLoads,
+};
 use super::posture::{Other, PostureWork};
 use super::qp::QpError;
 use super::result::*;
@@ -49,6 +64,9 @@ pub struct PlanOptions {
     pub fatigue_only: bool,
     /// Compute the three baselines.
     pub baselines: bool,
+    /// After the first plan's passes settle, search every group again from the other groups'
+    /// postures ([`CROSS_ROUNDS`] rounds); false stops at the settled passes.
+    pub cross_seeding: bool,
     pub sqp: SqpSettings,
 }
 
@@ -58,6 +76,7 @@ impl Default for PlanOptions {
             adapt: true,
             fatigue_only: false,
             baselines: true,
+            cross_seeding: true,
             sqp: SqpSettings::default(),
         }
     }
@@ -67,6 +86,9 @@ impl Default for PlanOptions {
 pub const MAX_PASSES: usize = 5;
 /// Passes stop when the objective falls by less than this (relative).
 pub const PASS_TOLERANCE: f64 = 1e-4;
+/// Cross-seeding rounds after the passes of a global search have settled: every group is
+/// searched again from its posture and from every other group's, then passes resume.
+pub const CROSS_ROUNDS: usize = 1;
 /// Coordination passes of the fatigue-unaware baseline (it starts from the main plan).
 pub const BASELINE_PASSES: usize = 2;
 /// SQP iterations a re-plan allows each phase (it starts from the previous plan's posture).
@@ -85,6 +107,8 @@ pub struct Planner<'t> {
     first_plan: Option<GroupPostures>,
     /// The nearest-to-neutral reaching postures (the first plan's start, a baseline).
     neutral: Option<GroupPostures>,
+    /// Cross-seeding rounds of a global search (set from [`PlanOptions::cross_seeding`]).
+    cross_rounds: usize,
 }
 
 /// Postures of every group, with their solve records.
@@ -142,6 +166,7 @@ impl<'t> Planner<'t> {
             rest_solve,
             first_plan: None,
             neutral: None,
+            cross_rounds: CROSS_ROUNDS,
         })
     }
 
@@ -222,7 +247,19 @@ impl<'t> Planner<'t> {
         let mut loads = self.phase_loads(gp);
         let mut passes = Vec::new();
         let mut last = f64::INFINITY;
-        for pass in 0..max_passes {
+        // passes since the last search (global or cross-seeding), and cross rounds left
+        let (mut since, mut cross_left, mut cross) = (
+            0,
+            if multistart && self.groups.len() > 1 {
+                self.cross_rounds
+            } else {
+                0
+            },
+            false,
+        );
+        let mut before_cross: Option<(GroupPostures, usize)> = None;
+        loop {
+            let global = multistart && passes.is_empty();
             for g in 0..self.groups.len() {
                 let members = self.groups[g].clone();
                 let rep = &t.phases[members[0]];
@@ -237,22 +274,23 @@ impl<'t> Planner<'t> {
                 };
                 let start = gp.q[g].clone();
                 let mut q = start.clone();
+                if cross {
+                    self.solver.extra_seeds = (0..self.groups.len())
+                        .filter(|&h| h != g)
+                        .map(|h| gp.q[h].clone())
+                        .collect();
+                }
                 let (out, stats) = self
                     .solver
-                    .solve(
-                        &spec,
-                        &mut cost,
-                        Some(&start),
-                        multistart && pass == 0,
-                        &mut q,
-                    )
+                    .solve(&spec, &mut cost, Some(&start), global || cross, &mut q)
                     .map_err(|source| PlanError::Qp {
                         phase: rep.name.clone(),
                         source,
                     })?;
+                self.solver.extra_seeds.clear();
                 gp.q[g] = q;
                 gp.solves[g] = out;
-                if multistart && pass == 0 {
+                if global {
                     gp.stats[g] = stats;
                 }
                 let f = self.loads_of(&gp.q[g], &rep.hand_force_n);
@@ -262,12 +300,43 @@ impl<'t> Planner<'t> {
             }
             let j = self.total_objective(gp, state, cycles, fatigue_only);
             passes.push(j);
-            if (last - j).abs() <= PASS_TOLERANCE * j.abs().max(1.0) {
+            since += 1;
+            let settled = (last - j).abs() <= PASS_TOLERANCE * j.abs().max(1.0);
+            last = j;
+            if cross && settled {
+                // the cross-seeding round found nothing better
                 break;
             }
-            last = j;
+            cross = false;
+            if settled || since >= max_passes {
+                if cross_left == 0 {
+                    break;
+                }
+                cross_left -= 1;
+                cross = true;
+                since = 0;
+                before_cross = Some((gp.clone(), passes.len()));
+            }
+        }
+        // With the discomfort term on, a round that leaves more joints at a limit than the plan
+        // before it had is undone (the search only traded the term's end penalty for fatigue).
+        if let Some((gp0, n0)) = before_cross
+            && !fatigue_only
+            && self.parks_at_a_limit(gp, &gp0)
+        {
+            *gp = gp0;
+            passes.truncate(n0);
         }
         Ok(passes)
+    }
+
+    /// Whether postures `gp` bring a joint to a limit that `before` kept well clear of
+    /// ([`Discomfort::parks_beyond`]).
+    fn parks_at_a_limit(&self, gp: &GroupPostures, before: &GroupPostures) -> bool {
+        let d = &self.solver.discomfort;
+        gp.q.iter()
+            .zip(&before.q)
+            .any(|(q, q0)| d.parks_beyond(q, &d.clear_of_limits(q0)))
     }
 
     /// Postures per group solved once with a load cost of its own (baselines).
@@ -331,6 +400,7 @@ impl<'t> Planner<'t> {
         self.qp_solves_before = self.solver.work.qp.solves;
         self.solver.settings = opts.sqp;
         self.solver.work.settings = opts.sqp;
+        self.cross_rounds = if opts.cross_seeding { CROSS_ROUNDS } else { 0 };
         let (gp, passes) = self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?;
         self.first_plan = Some(gp.clone());
         let mut plan = self.simulate(gp, passes, opts)?;
@@ -754,7 +824,7 @@ impl<'t> Planner<'t> {
                         .then_some(sol.balance_margin_m),
                     most_loaded: loaded,
                     at_limits: d
-                        .near_limits(q, 0.01)
+                        .near_limits(q, AT_LIMIT_FRACTION)
                         .into_iter()
                         .map(|(k, _, _)| t.model.q_joint(k).name.clone())
                         .collect(),

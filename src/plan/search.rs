@@ -6,8 +6,10 @@
 //! configurations (for other bodies: fixed, seeded perturbations of the rest posture). Each is
 //! first brought onto the hand targets and the stance by [`solve_ik`], then improved by a few SQP
 //! iterations; the most promising ([`SearchSettings::finalists`]) are solved to convergence and
-//! the best feasible one is kept. Everything is deterministic: the same problem gives the same
-//! posture, whatever posture the search started from.
+//! the best feasible one is kept. The planner's cross-seeding pass searches from the other
+//! phases' postures instead ([`PhaseSolver::extra_seeds`]), all solved to convergence.
+//! Everything is deterministic: the same problem gives the same posture, whatever posture the
+//! search started from.
 
 use super::ik::{IkSettings, solve_ik};
 use super::objective::{Discomfort, LoadCost};
@@ -59,6 +61,10 @@ pub struct PhaseSolver<'t> {
     pub settings: SqpSettings,
     /// Standing at rest (set by the planner).
     pub q_rest: Vec<f64>,
+    /// Further starting postures of the next multi-start (the planner sets them to the other
+    /// groups' postures in its cross-seeding rounds); when not empty, the given start is always
+    /// a finalist, so the search can only improve on it.
+    pub extra_seeds: Vec<Vec<f64>>,
     /// Curvature learnt per phase key (see [`PhaseSpec::memory`]).
     curvature: std::collections::HashMap<usize, Vec<f64>>,
 }
@@ -94,6 +100,7 @@ impl<'t> PhaseSolver<'t> {
             search: SearchSettings::default(),
             settings,
             q_rest: vec![0.0; task.model.nq()],
+            extra_seeds: Vec::new(),
             curvature: std::collections::HashMap::new(),
         })
     }
@@ -211,7 +218,10 @@ impl<'t> PhaseSolver<'t> {
         if let Some(s) = start {
             starts.push(s.to_vec());
         }
-        if multistart || starts.is_empty() {
+        let keep_start = multistart && start.is_some() && !self.extra_seeds.is_empty();
+        if keep_start {
+            starts.append(&mut self.extra_seeds);
+        } else if multistart || starts.is_empty() {
             starts.extend(self.seeds(&spec.targets_m));
         }
         // Bring every start onto the targets and the stance.
@@ -256,7 +266,14 @@ impl<'t> PhaseSolver<'t> {
         let n_seeds = screened.len();
         let mut best: Option<(f64, usize, Vec<f64>, SqpOutcome)> = None;
         let mut first_full = None;
-        for (_, i, mut s, _) in screened.into_iter().take(self.search.finalists.max(1)) {
+        // a cross-seeding search solves every start to convergence: with no screening cut, which
+        // seeds go on does not hinge on the screening's last digits, and the start is among them
+        let finalists = if keep_start {
+            usize::MAX
+        } else {
+            self.search.finalists.max(1)
+        };
+        for (_, i, mut s, _) in screened.into_iter().take(finalists) {
             let out = self.run(spec, cost, &mut s, full)?;
             if i == 0 {
                 first_full = Some(out.objective);

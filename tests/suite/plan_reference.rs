@@ -344,12 +344,11 @@ fn reference_best_plans_evaluate_to_the_reference_totals() {
     );
 }
 
-/// A good multi-start must do at least as well as the reference's typical local solve. It does
-/// not yet: with the committed results (reference best / median / ours, fatigue-only, min) shelf
-/// 48.7 / 64.9 / 62.5, bench_assembly 39.3 / 45.0 / 45.0, shelf_two_hands 158.8 / 176.2 / 181.0 —
-/// ours is above the median on two tasks and 14–28 % above the reference's best on all three.
+/// A good multi-start must do at least as well as the reference's typical local solve: on every
+/// task with sustainable reference optima, `plan --no-adapt --fatigue-only` is no worse than their
+/// median. (It failed on shelf and shelf_two_hands until the planner's cross-seeding rounds; the
+/// stricter target, within 1 % of the reference's best, is not met: see the README.)
 #[test]
-#[ignore = "BUG: the planner's fatigue-only plan is worse than the reference's median local optimum on shelf and shelf_two_hands (run with --ignored)"]
 fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
     // The median is taken over the reference's whole-plan local optima that exhaust no muscle
     // group: a plan whose capacity falls to its load cannot be carried out, and posture-opt's

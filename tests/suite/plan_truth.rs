@@ -148,6 +148,36 @@ fn converged_phases_meet_the_kkt_tolerance() {
     }
 }
 
+/// The cross-seeding round (every group searched again from the other groups' postures once the
+/// passes settle) only extends the search: the passes without it are exactly the first passes
+/// with it, and it never ends higher.
+#[test]
+fn cross_seeding_only_lowers_the_first_plans_objective() {
+    for name in ["shelf", "bench_assembly"] {
+        let task =
+            Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let with = plan_task_with(&task, held(false)).unwrap().summary.passes;
+        let without = plan_task_with(
+            &task,
+            PlanOptions {
+                cross_seeding: false,
+                ..held(false)
+            },
+        )
+        .unwrap()
+        .summary
+        .passes;
+        assert!(
+            with.len() >= without.len() && with[..without.len()] == without[..],
+            "{name}: the passes without the round {without:?} are not the first of {with:?}"
+        );
+        assert!(
+            with.last().unwrap() <= &(without.last().unwrap() * (1.0 + 1e-12)),
+            "{name}: {with:?} ends above {without:?}"
+        );
+    }
+}
+
 #[test]
 fn planning_is_deterministic() {
     let dir = tempfile::tempdir().unwrap();
@@ -166,11 +196,14 @@ fn planning_is_deterministic() {
 /// than 1e-4 (relative) nor flip the exhaustion verdict.
 #[test]
 fn the_solvers_precision_does_not_decide_the_plan() {
-    let task = Task::from_file(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tasks/bench_assembly.yaml"
-    ))
-    .unwrap();
+    for name in ["bench_assembly", "shelf"] {
+        solver_precision_does_not_decide(name);
+    }
+}
+
+fn solver_precision_does_not_decide(name: &str) {
+    let task =
+        Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
     let plan_with = |tol: f64| {
         let sqp = SqpSettings {
             precision: QpPrecision {
@@ -185,7 +218,7 @@ fn the_solvers_precision_does_not_decide_the_plan() {
     let rel = (a.summary.total_u - b.summary.total_u).abs() / a.summary.total_u;
     assert!(
         rel <= 1e-4,
-        "total U {} vs {} (relative {rel:.1e})",
+        "{name}: total U {} vs {} (relative {rel:.1e})",
         a.summary.total_u,
         b.summary.total_u
     );

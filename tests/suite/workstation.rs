@@ -527,8 +527,11 @@ fn non_finite_capsules_do_not_panic() {
     }
 }
 
+/// Offset planes (their in-plane position is irrelevant) and bodies sunk inside a cylinder or a
+/// box: the distance is the height above the plane, or minus (the depth to the nearest face plus
+/// the radius) inside.
 #[test]
-fn zz_probe() {
+fn offset_planes_and_penetration_depths() {
     let half = v(0.1, 0.1, 0.1);
     for (pp, bp) in [
         ([0.0, 0.0, 0.0], v(0.0, 0.0, 0.5)),
@@ -539,34 +542,50 @@ fn zz_probe() {
         ([1.0, 2.0, 0.2], v(1.0, 2.0, 0.5)),
     ] {
         let floor = plane([0.0, 0.0, 1.0], pp, [0.0; 3]);
-        let c = body_box(&floor, bp, [0.0; 3], half);
-        let c2 = sphere(&floor, bp, 0.1);
-        eprintln!(
-            "PROBE plane at {pp:?}, box at {bp:?}: box {:.6} (expect {:.6}), sphere {:.6}",
-            c.distance_m,
-            bp.z - 0.1 - pp[2],
-            c2.distance_m
+        // the box's bottom face and the sphere's lowest point are 0.1 below the centre
+        let expected = bp.z - 0.1 - pp[2];
+        let what = format!("plane at {pp:?}, body at {bp:?}");
+        check(
+            &body_box(&floor, bp, [0.0; 3], half),
+            expected,
+            None,
+            1e-12,
+            &what,
         );
+        check(&sphere(&floor, bp, 0.1), expected, None, 1e-12, &what);
     }
+    // a cylinder of radius 0.1 standing from z = 0 to z = 2 on the axis x = 0.5, y = 0
     let cyl = cylinder(0.1, 2.0, [0.5, 0.0, 1.0], [0.0; 3]);
-    for (c, r) in [
-        (v(0.5, 0.0, 1.9), 0.05),
-        (v(0.5, 0.0, 1.9), 0.01),
-        (v(0.5, 0.0, 1.0), 0.05),
-        (v(0.52, 0.0, 1.95), 0.01),
+    for (c, r, expected) in [
+        (v(0.5, 0.0, 1.9), 0.05, -0.15), // side and top both 0.1 away
+        (v(0.5, 0.0, 1.9), 0.01, -0.11),
+        (v(0.5, 0.0, 1.0), 0.05, -0.15),   // side 0.1, top 1.0
+        (v(0.52, 0.0, 1.95), 0.01, -0.06), // top 0.05 nearer than the side (0.08)
     ] {
-        eprintln!(
-            "PROBE cyl sphere {c:?} r {r}: {:.6}",
-            sphere(&cyl, c, r).distance_m
-        );
-        eprintln!(
-            "PROBE cyl capsule {c:?} r {r}: {:.6}",
-            capsule(&cyl, c, c + v(0.0, 0.0, -0.01), r).distance_m
+        check(
+            &sphere(&cyl, c, r),
+            expected,
+            None,
+            1e-5,
+            &format!("sphere at {c:?}"),
         );
     }
+    // a capsule from z = 1.95 down to 1.94: its deepest point is 0.06 below the top
+    let c = v(0.52, 0.0, 1.95);
+    check(
+        &capsule(&cyl, c, c + v(0.0, 0.0, -0.01), 0.01),
+        -0.07,
+        None,
+        1e-5,
+        "capsule inside the cylinder",
+    );
+    // a 0.2 × 0.2 × 2 box over the same axis: faces 0.1 from the sphere's centre
     let bx = cuboid([0.2, 0.2, 2.0], [0.5, 0.0, 1.0], [0.0; 3]);
-    eprintln!(
-        "PROBE box sphere {:.6}",
-        sphere(&bx, v(0.5, 0.0, 1.9), 0.05).distance_m
+    check(
+        &sphere(&bx, v(0.5, 0.0, 1.9), 0.05),
+        -0.15,
+        None,
+        1e-9,
+        "sphere inside the box",
     );
 }
