@@ -318,8 +318,9 @@ impl<'t> Planner<'t> {
                 before_cross = Some((gp.clone(), passes.len()));
             }
         }
-        // With the discomfort term on, a round that leaves more joints at a limit than the plan
-        // before it had is undone (the search only traded the term's end penalty for fatigue).
+        // With the discomfort term on, a round that parks a joint at a limit the plan before it
+        // kept well clear of is undone (the search only traded the term's end penalty for
+        // fatigue).
         if let Some((gp0, n0)) = before_cross
             && !fatigue_only
             && self.parks_at_a_limit(gp, &gp0)
