@@ -125,6 +125,15 @@ pub struct BodyModel {
     pub q_parent_body: Vec<usize>,
     pub q_body_rot_joint: Vec<Matrix3<f64>>,
     pub q_body_pos_joint: Vec<Vector3<f64>>,
+    /// Per q index: whether the joint frame's rotation in its parent body is exactly the identity
+    /// (the generated worker's always is), so forward kinematics can skip the product.
+    pub q_body_rot_is_identity: Vec<bool>,
+    /// Per q index: whether the joint frame sits at its parent body's origin.
+    pub q_body_pos_is_zero: Vec<bool>,
+    /// The q indices that move each rigid body, root first: body b's are
+    /// `body_q_path[body_q_path_start[b]..body_q_path_start[b + 1]]`.
+    body_q_path: Vec<usize>,
+    body_q_path_start: Vec<usize>,
     /// Mass below each moving joint \[kg\] (posture-independent), per q index.
     pub q_subtree_mass_kg: Vec<f64>,
     /// Total mass \[kg\].
@@ -671,6 +680,25 @@ impl BodyModel {
             })
             .collect();
         let mass_kg = links.iter().map(|l| l.mass_kg).sum();
+        let q_body_rot_is_identity = q_body_rot_joint
+            .iter()
+            .map(|r| *r == Matrix3::identity())
+            .collect();
+        let q_body_pos_is_zero = q_body_pos_joint
+            .iter()
+            .map(|p| *p == Vector3::zeros())
+            .collect();
+        let (mut body_q_path, mut body_q_path_start) = (Vec::new(), vec![0]);
+        for b in 0..=nq {
+            let start = body_q_path.len();
+            let mut body = b;
+            while body > 0 {
+                body_q_path.push(body - 1);
+                body = q_parent_body[body - 1];
+            }
+            body_q_path[start..].reverse();
+            body_q_path_start.push(body_q_path.len());
+        }
         Ok(BodyModel {
             name: robot.name.clone(),
             links,
@@ -683,17 +711,23 @@ impl BodyModel {
             q_parent_body,
             q_body_rot_joint,
             q_body_pos_joint,
+            q_body_rot_is_identity,
+            q_body_pos_is_zero,
+            body_q_path,
+            body_q_path_start,
             q_subtree_mass_kg,
             mass_kg,
         })
     }
 
     /// Number of moving joints (the length of q).
+    #[inline]
     pub fn nq(&self) -> usize {
         self.joint_of_q.len()
     }
 
     /// The moving joint at q index `i`.
+    #[inline]
     pub fn q_joint(&self, i: usize) -> &Joint {
         &self.joints[self.joint_of_q[i]]
     }
@@ -736,6 +770,13 @@ impl BodyModel {
     #[inline]
     pub fn q_moves_body(&self, k: usize, b: usize) -> bool {
         b > 0 && self.q_is_ancestor_or_self(k, b - 1)
+    }
+
+    /// The q indices of the joints that move rigid body `b`, in increasing order (root first):
+    /// exactly the `k` with `q_moves_body(k, b)`.
+    #[inline]
+    pub fn q_path_of_body(&self, b: usize) -> &[usize] {
+        &self.body_q_path[self.body_q_path_start[b]..self.body_q_path_start[b + 1]]
     }
 
     /// Whether joint `i` moves link `l` (lies on its path to the root).

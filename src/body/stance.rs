@@ -42,8 +42,7 @@
 
 use super::model::{BodyError, BodyModel};
 use super::statics::{PointLoad, StaticsData};
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector2, Vector3};
-use std::ops::AddAssign;
+use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector2, Vector3};
 
 /// A foot: its link and the sole, the bottom face of the link's collision box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,6 +86,8 @@ pub struct Stance {
     pub world_from_foot: [Isometry3<f64>; 2],
     /// Support polygon (convex hull of both soles), counter-clockwise, world x-y \[m\].
     pub support_polygon_m: Vec<Vector2<f64>>,
+    /// The polygon's edges as (outward unit normal, offset), computed once.
+    edges_m: Vec<(Vector2<f64>, f64)>,
 }
 
 impl Stance {
@@ -107,14 +108,25 @@ impl Stance {
                 corners.push(Vector2::new(c.x, c.y));
             }
         }
+        let v = convex_hull(corners);
+        let edges_m = (0..v.len())
+            .map(|i| {
+                let (a, b) = (v[i], v[(i + 1) % v.len()]);
+                let t = (b - a).normalize();
+                let n = Vector2::new(t.y, -t.x);
+                (n, n.dot(&a))
+            })
+            .collect();
         Stance {
             feet,
             world_from_foot,
-            support_polygon_m: convex_hull(corners),
+            support_polygon_m: v,
+            edges_m,
         }
     }
 
     /// Signed distance \[m\] of point `p` from the support polygon's boundary: positive inside.
+    #[inline]
     pub fn margin_m(&self, p: &Vector2<f64>) -> f64 {
         self.edges()
             .map(|(n, d)| d - n.dot(p))
@@ -122,14 +134,9 @@ impl Stance {
     }
 
     /// The polygon's edges as (outward unit normal n, offset d): inside means `n·p ≤ d`.
+    #[inline]
     pub fn edges(&self) -> impl Iterator<Item = (Vector2<f64>, f64)> + '_ {
-        let v = &self.support_polygon_m;
-        (0..v.len()).map(move |i| {
-            let (a, b) = (v[i], v[(i + 1) % v.len()]);
-            let t = (b - a).normalize();
-            let n = Vector2::new(t.y, -t.x);
-            (n, n.dot(&a))
-        })
+        self.edges_m.iter().copied()
     }
 }
 
@@ -307,7 +314,6 @@ pub fn settle_internal_force(
     actuated: &[bool],
     g: &mut nalgebra::Matrix3xX<f64>,
 ) -> InternalWrench {
-    let nq = model.nq();
     let sole = |data: &StaticsData, i: usize| {
         let f = &stance.feet[i];
         data.link_point(model, f.link, &f.sole_center_in_link_m)
@@ -322,40 +328,51 @@ pub fn settle_internal_force(
     // columns of G: ∂τ/∂λ, ∂τ/∂m_x, ∂τ/∂m_y (left foot +, right foot −), nonzero only for the
     // joints that move a foot: a revolute joint's column is (e·(a × (p − o)), a_x, a_y), a
     // prismatic one's (e·a, 0, 0)
-    g.fill(0.0);
-    for (i, sign) in [(0usize, -1.0), (1usize, 1.0)] {
-        let body = model.link_in_body[stance.feet[i].link].body;
-        let p = r.cop_m[i];
-        for k in (0..nq).filter(|&k| model.q_moves_body(k, body)) {
-            let a = data.axis_w[k];
-            let col = if model.q_joint(k).kind == super::model::JointKind::Prismatic {
-                Vector3::new(e.dot(&a), 0.0, 0.0)
-            } else {
-                Vector3::new(e.dot(&a.cross(&(p - data.origin_w[k]))), a.x, a.y)
-            };
-            g.fixed_view_mut::<3, 1>(0, k).add_assign(sign * col);
+    let paths = stance
+        .feet
+        .map(|f| model.q_path_of_body(model.link_in_body[f.link].body));
+    // ∂τ_k/∂(λ, m) of a unit internal wrench on foot i (left −, right + along e)
+    let unit = |i: usize, k: usize| {
+        let a = data.axis_w[k];
+        if model.q_joint(k).kind == super::model::JointKind::Prismatic {
+            Vector3::new(e.dot(&a), 0.0, 0.0)
+        } else {
+            Vector3::new(e.dot(&a.cross(&(r.cop_m[i] - data.origin_w[k]))), a.x, a.y)
         }
-    }
-    let mut gtg = nalgebra::Matrix3::<f64>::zeros();
+    };
+    // Both paths start at the root, so they share a prefix and then part: G is zero outside
+    // their union, and every sum below runs over the union only (columns elsewhere in `g` are
+    // left as they were).
+    let shared = paths[0]
+        .iter()
+        .zip(paths[1])
+        .take_while(|(a, b)| a == b)
+        .count();
+    let carrying = || paths[0].iter().chain(&paths[1][shared..]).copied();
+    let mut gtg = Matrix3::<f64>::zeros();
     let mut gtt = Vector3::<f64>::zeros();
-    for k in (0..nq).filter(|&k| actuated[k]) {
-        let col = g.column(k).into_owned();
-        gtg += col * col.transpose();
-        gtt += col * data.tau_nm[k];
-    }
-    // minimum-norm least squares: eigenvalues below 1e-12 × the largest count as zero
-    let eig = nalgebra::SymmetricEigen::new(gtg);
-    let top = eig.eigenvalues.iter().copied().fold(0.0, f64::max);
-    let mut w = Vector3::zeros();
-    if top > 0.0 {
-        for j in 0..3 {
-            let ev = eig.eigenvalues[j];
-            if ev > 1e-12 * top {
-                let v = eig.eigenvectors.column(j).into_owned();
-                w -= v * (v.dot(&gtt) / ev);
+    for (n, k) in carrying().enumerate() {
+        let col = if n < shared {
+            // a joint that moves both feet: the pair's moments cancel, the forces' levers differ
+            // by the feet's separation
+            let a = data.axis_w[k];
+            if model.q_joint(k).kind == super::model::JointKind::Prismatic {
+                Vector3::zeros()
+            } else {
+                Vector3::new(e.dot(&a.cross(&(r.cop_m[1] - r.cop_m[0]))), 0.0, 0.0)
             }
+        } else if n < paths[0].len() {
+            -unit(0, k)
+        } else {
+            unit(1, k)
+        };
+        g.fixed_view_mut::<3, 1>(0, k).copy_from(&col);
+        if actuated[k] {
+            gtg += col * col.transpose();
+            gtt += col * data.tau_nm[k];
         }
     }
+    let mut w = min_norm_solve(&gtg, &gtt);
     let m_opt = Vector2::new(w.y, w.z);
     let alpha = if m_opt == Vector2::zeros() {
         1.0
@@ -367,7 +384,7 @@ pub fn settle_internal_force(
     if alpha < 1.0 {
         let m = alpha * m_opt;
         let (mut num, mut den) = (0.0, 0.0);
-        for k in (0..nq).filter(|&k| actuated[k]) {
+        for k in carrying().filter(|&k| actuated[k]) {
             let gl = g[(0, k)];
             num += gl * (data.tau_nm[k] + m.x * g[(1, k)] + m.y * g[(2, k)]);
             den += gl * gl;
@@ -375,7 +392,7 @@ pub fn settle_internal_force(
         let lambda = if den > 0.0 { -num / den } else { 0.0 };
         w = Vector3::new(lambda, m.x, m.y);
     }
-    for k in 0..nq {
+    for k in carrying() {
         let dt = g.column(k).dot(&w);
         data.tau_nm[k] += dt;
         data.tau_load_nm[k] += dt;
@@ -396,6 +413,36 @@ pub fn settle_internal_force(
         moment_nm: m,
         sole_factor: alpha,
     }
+}
+
+/// The minimum-norm least-squares `w` with `A w = −b` for symmetric positive semi-definite
+/// 3 × 3 `A`: eigen-directions with eigenvalues below 1e-12 × the largest count as zero. When
+/// every eigenvalue clears that bound — certified by `λ_min ≥ 4 det / tr²` and `λ_max ≤ tr` —
+/// the matrix is inverted directly (the same solution, without the eigen-decomposition).
+fn min_norm_solve(a: &Matrix3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
+    let tr = a.trace();
+    if tr <= 0.0 {
+        return Vector3::zeros();
+    }
+    let det = a.determinant();
+    if 4.0 * det > 1e-12 * tr * tr * tr
+        && let Some(inv) = a.try_inverse()
+    {
+        return -(inv * b);
+    }
+    let eig = nalgebra::SymmetricEigen::new(*a);
+    let top = eig.eigenvalues.iter().copied().fold(0.0, f64::max);
+    let mut w = Vector3::zeros();
+    if top > 0.0 {
+        for j in 0..3 {
+            let ev = eig.eigenvalues[j];
+            if ev > 1e-12 * top {
+                let v = eig.eigenvectors.column(j).into_owned();
+                w -= v * (v.dot(b) / ev);
+            }
+        }
+    }
+    w
 }
 
 /// The largest `α` in 0..1 for which the moments `±α m` keep each foot's centre of pressure on
@@ -476,6 +523,49 @@ pub fn cop_jacobian(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The direct solve and the eigen fallback agree with the SVD pseudo-inverse on full-rank,
+    /// rank-2, rank-1 and badly conditioned matrices.
+    #[test]
+    fn min_norm_solve_is_the_pseudo_inverse_solution() {
+        let mut seed = 7_u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for case in 0..400 {
+            let rank = 1 + case % 3;
+            let scale = [1.0, 1e-3, 1e4][case % 3];
+            let mut a = Matrix3::zeros();
+            for r in 0..rank {
+                let v = Vector3::new(next(), next(), next());
+                a += v * v.transpose() * scale * if r == 2 && case % 7 == 0 { 1e-9 } else { 1.0 };
+            }
+            let b = Vector3::new(next(), next(), next()) * scale;
+            let w = min_norm_solve(&a, &b);
+            let svd = a.svd(true, true);
+            let (top, low) = (svd.singular_values.max(), svd.singular_values.min());
+            let want = -(svd.pseudo_inverse(1e-12 * top).unwrap() * b);
+            // backward stable: the same fit A w = −(b's part in A's range), to rounding of the
+            // size ‖A‖‖w‖ ε
+            let fit_tol = 1e-12 * a.norm() * (w.norm() + want.norm());
+            assert!(
+                (a * (w - want)).norm() <= fit_tol,
+                "case {case}: {w} against {want}"
+            );
+            if low > 1e-6 * top {
+                // well conditioned: the same solution, to rounding times the condition number
+                let tol = 1e-12 * (top / low) * want.norm();
+                assert!((w - want).norm() <= tol, "case {case}: {w} against {want}");
+            }
+        }
+        assert_eq!(
+            min_norm_solve(&Matrix3::zeros(), &Vector3::x()),
+            Vector3::zeros()
+        );
+    }
 
     #[test]
     fn hull_of_two_feet_and_margins() {
