@@ -91,8 +91,10 @@ pub const PASS_TOLERANCE: f64 = 1e-4;
 pub const CROSS_ROUNDS: usize = 1;
 /// Coordination passes of the fatigue-unaware baseline (it starts from the main plan).
 pub const BASELINE_PASSES: usize = 2;
-/// SQP iterations a re-plan allows each phase (it starts from the previous plan's posture).
-pub const REPLAN_ITERATIONS: usize = 15;
+/// SQP iterations a re-plan allows each phase (it starts from the previous plan's posture): with
+/// 15 the re-planned shelf phases stopped unconverged at the cap in 4 of 6, with 40 none does, for
+/// 2 % more QPs.
+pub const REPLAN_ITERATIONS: usize = 40;
 
 /// The planner of one task.
 pub struct Planner<'t> {

@@ -18,7 +18,7 @@
 //! variables (x₀ the current point in the QP's variables), feasibility (largest target, feet,
 //! clearance and balance violation, metres or radians) and complementarity (largest
 //! `|z_i·slack_i|` of the inequality rows). A phase is `converged` when all three are below
-//! [`SqpSettings::tol_kkt`] (default 1e-6); otherwise the solve reports why it stopped.
+//! [`SqpSettings::tol_kkt`] (default 1e-5); otherwise the solve reports why it stopped.
 
 use super::objective::{Discomfort, LoadCost};
 use super::posture::{PostureWork, Scene};
