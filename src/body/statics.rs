@@ -409,9 +409,10 @@ pub fn apply_loads(
     }
 }
 
-/// The per-(joint, load) levers `a×(p_e − o)` and `a×F_e` of the last [`apply_loads`], zero
-/// for every joint that does not move the load (and `a×(p_e − o)` for prismatic joints). The
-/// arrays are cleared only when a load moves to another body; each load visits only its path.
+/// The per-(joint, load) levers `a×(p_e − o)` and `a×F_e` of the last [`apply_loads`]: both
+/// zero for every joint that does not move the load, and `a×(p_e − o)` zero for prismatic
+/// joints. The arrays are cleared only when a load moves to another body; each load visits only
+/// its own path.
 fn load_levers(model: &BodyModel, data: &mut StaticsData) {
     let ne = data.loads.len();
     let same_bodies = data.load_bodies.len() == ne
