@@ -67,6 +67,10 @@ pub struct PlanOptions {
     /// After the first plan's passes settle, search every group again from the other groups'
     /// postures ([`CROSS_ROUNDS`] rounds); false stops at the settled passes.
     pub cross_seeding: bool,
+    /// After the first plan's search, swap groups' postures for other local optima the search
+    /// found where that lowers the whole objective ([`Planner`]'s pool swap); false keeps the
+    /// searched plan.
+    pub pool_swap: bool,
     pub sqp: SqpSettings,
 }
 
@@ -77,6 +81,7 @@ impl Default for PlanOptions {
             fatigue_only: false,
             baselines: true,
             cross_seeding: true,
+            pool_swap: true,
             sqp: SqpSettings::default(),
         }
     }
@@ -111,6 +116,10 @@ pub struct Planner<'t> {
     neutral: Option<GroupPostures>,
     /// Cross-seeding rounds of a global search (set from [`PlanOptions::cross_seeding`]).
     cross_rounds: usize,
+    /// Whether the first plan ends with a pool swap (set from [`PlanOptions::pool_swap`]).
+    swap: bool,
+    /// Per group, every local optimum the first plan's searches found (for [`Self::pool_swap`]).
+    pools: Vec<Vec<Vec<f64>>>,
 }
 
 /// Postures of every group, with their solve records.
@@ -168,6 +177,8 @@ impl<'t> Planner<'t> {
             rest_solve,
             first_plan: None,
             neutral: None,
+            pools: Vec::new(),
+            swap: true,
             cross_rounds: CROSS_ROUNDS,
         })
     }
@@ -282,6 +293,7 @@ impl<'t> Planner<'t> {
                         .map(|h| gp.q[h].clone())
                         .collect();
                 }
+                self.solver.pool.clear();
                 let (out, stats) = self
                     .solver
                     .solve(&spec, &mut cost, Some(&start), global || cross, &mut q)
@@ -290,6 +302,7 @@ impl<'t> Planner<'t> {
                         source,
                     })?;
                 self.solver.extra_seeds.clear();
+                self.pools[g].append(&mut self.solver.pool);
                 gp.q[g] = q;
                 gp.solves[g] = out;
                 if global {
@@ -331,6 +344,80 @@ impl<'t> Planner<'t> {
             passes.truncate(n0);
         }
         Ok(passes)
+    }
+
+    /// Greedy swaps among the local optima the searches found: each group's posture is replaced
+    /// by any posture of its pool that lowers the whole objective (the other groups held), keeps
+    /// every load within its capacity bound and, with the discomfort term on, is no more awkward
+    /// than the posture it replaces, until no swap helps. The per-group searches
+    /// choose each posture with the others as they were then; a posture that lost to another
+    /// early can win once the other groups have moved (after the final pool swap of the
+    /// independent reference search). Only objective evaluations: no QP. Returns whether any
+    /// posture changed.
+    fn pool_swap(
+        &mut self,
+        gp: &mut GroupPostures,
+        state: &[MaState],
+        cycles: u64,
+        fatigue_only: bool,
+    ) -> bool {
+        let mut best = self.total_objective(gp, state, cycles, fatigue_only);
+        let mut changed = false;
+        for _ in 0..MAX_PASSES {
+            let mut improved = false;
+            let pools = std::mem::take(&mut self.pools);
+            for (g, pool) in pools.iter().enumerate() {
+                for cand in pool {
+                    if !fatigue_only {
+                        // a swap trades no comfort for fatigue: the candidate may be no more
+                        // awkward than the posture it replaces (the objective's weight alone let
+                        // shelf trade 14–20° more trunk twist and a 70° wrist for 20 % less U)
+                        let d = &self.solver.discomfort;
+                        if d.value(cand) > d.value(&gp.q[g]) + 1e-9
+                            || d.parks_beyond(cand, &d.clear_of_limits(&gp.q[g]))
+                        {
+                            continue;
+                        }
+                    }
+                    let old = std::mem::replace(&mut gp.q[g], cand.clone());
+                    let j = self.total_objective(gp, state, cycles, fatigue_only);
+                    if j < best - PASS_TOLERANCE * best.abs().max(1.0)
+                        && self.within_capacity(gp, state, cycles)
+                    {
+                        best = j;
+                        improved = true;
+                    } else {
+                        gp.q[g] = old;
+                    }
+                }
+            }
+            self.pools = pools;
+            changed |= improved;
+            if !improved {
+                break;
+            }
+        }
+        changed
+    }
+
+    /// Whether every half-joint's load in every group stays within the bound the QP's capacity
+    /// rows keep it under (its lowest capacity over the task, less the exhaustion margin).
+    fn within_capacity(&mut self, gp: &GroupPostures, state: &[MaState], cycles: u64) -> bool {
+        let loads = self.phase_loads(gp);
+        for members in &self.groups {
+            let mut cost =
+                FatigueCost::new(self.task, members, &loads, &self.rest_loads, state, cycles);
+            let f = &loads[members[0]];
+            for (h, &fh) in f.iter().enumerate() {
+                if fh > 0.0
+                    && let Some((bound, _)) = cost.capacity_bound(h, fh)
+                    && fh > bound
+                {
+                    return false;
+                }
+            }
+        }
+        true
     }
 
     /// Whether postures `gp` bring a joint to a limit that `before` kept well clear of
@@ -391,7 +478,19 @@ impl<'t> Planner<'t> {
     ) -> Result<(GroupPostures, Vec<f64>), PlanError> {
         let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0)?;
         self.neutral = Some(gp.clone());
-        let passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
+        self.pools = vec![Vec::new(); self.groups.len()];
+        let mut passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
+        let searched = gp.clone();
+        if self.swap && self.pool_swap(&mut gp, state, cycles, fatigue_only) {
+            let more = self.optimise(&mut gp, state, cycles, fatigue_only, false, MAX_PASSES)?;
+            // the local passes after a swap only polish it; should they end above the searched
+            // plan (they may not, they start lower), the searched plan is kept
+            if more.last() < passes.last() {
+                passes.extend(more);
+            } else {
+                gp = searched;
+            }
+        }
         Ok((gp, passes))
     }
 
@@ -404,6 +503,7 @@ impl<'t> Planner<'t> {
         self.solver.settings = opts.sqp;
         self.solver.work.settings = opts.sqp;
         self.cross_rounds = if opts.cross_seeding { CROSS_ROUNDS } else { 0 };
+        self.swap = opts.pool_swap;
         let (gp, passes) = self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?;
         self.first_plan = Some(gp.clone());
         let mut plan = self.simulate(gp, passes, opts)?;

@@ -65,6 +65,9 @@ pub struct PhaseSolver<'t> {
     /// groups' postures in its cross-seeding rounds); when not empty, the given start is always
     /// a finalist, so the search can only improve on it.
     pub extra_seeds: Vec<Vec<f64>>,
+    /// Every converged, feasible posture the multi-starts found since the caller last cleared
+    /// it (the planner's pool of local optima per group, see `Planner::pool_swap`).
+    pub pool: Vec<Vec<f64>>,
     /// Curvature learnt per phase key (see [`PhaseSpec::memory`]).
     curvature: std::collections::HashMap<usize, Vec<f64>>,
 }
@@ -101,6 +104,7 @@ impl<'t> PhaseSolver<'t> {
             settings,
             q_rest: vec![0.0; task.model.nq()],
             extra_seeds: Vec::new(),
+            pool: Vec::new(),
             curvature: std::collections::HashMap::new(),
         })
     }
@@ -279,6 +283,9 @@ impl<'t> PhaseSolver<'t> {
                 first_full = Some(out.objective);
             }
             let r = rank(&out);
+            if r < 1e6 {
+                self.pool.push(s.clone());
+            }
             if best
                 .as_ref()
                 .is_none_or(|b| r < b.0 || (r == b.0 && i < b.1))

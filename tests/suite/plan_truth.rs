@@ -150,18 +150,22 @@ fn converged_phases_meet_the_kkt_tolerance() {
 
 /// The cross-seeding round (every group searched again from the other groups' postures once the
 /// passes settle) only extends the search: the passes without it are exactly the first passes
-/// with it, and it never ends higher.
+/// with it, and it never ends higher (both without the pool swap that follows).
 #[test]
 fn cross_seeding_only_lowers_the_first_plans_objective() {
     for name in ["shelf", "bench_assembly"] {
         let task =
             Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
-        let with = plan_task_with(&task, held(false)).unwrap().summary.passes;
+        let no_swap = PlanOptions {
+            pool_swap: false,
+            ..held(false)
+        };
+        let with = plan_task_with(&task, no_swap).unwrap().summary.passes;
         let without = plan_task_with(
             &task,
             PlanOptions {
                 cross_seeding: false,
-                ..held(false)
+                ..no_swap
             },
         )
         .unwrap()
@@ -174,6 +178,59 @@ fn cross_seeding_only_lowers_the_first_plans_objective() {
         assert!(
             with.last().unwrap() <= &(without.last().unwrap() * (1.0 + 1e-12)),
             "{name}: {with:?} ends above {without:?}"
+        );
+    }
+}
+
+/// The pool swap (each group's posture traded for another local optimum the search found, where
+/// that lowers the whole objective) only extends the first plan: the passes without it are the
+/// first passes with it, it never ends higher, every swapped-in posture still reaches its own
+/// phase's target (a pool holds only its group's optima), it brings no new exhaustion and parks
+/// no more phases at a joint limit.
+#[test]
+fn the_pool_swap_only_lowers_the_first_plans_objective() {
+    for name in ["shelf", "bench_assembly"] {
+        let task =
+            Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let with = plan_task_with(&task, held(false)).unwrap().summary;
+        let without = plan_task_with(
+            &task,
+            PlanOptions {
+                pool_swap: false,
+                ..held(false)
+            },
+        )
+        .unwrap()
+        .summary;
+        let (pw, po) = (&with.passes, &without.passes);
+        assert!(
+            pw.len() >= po.len() && pw[..po.len()] == po[..],
+            "{name}: the passes without the swap {po:?} are not the first of {pw:?}"
+        );
+        assert!(
+            pw.last().unwrap() <= &(po.last().unwrap() * (1.0 + 1e-12)),
+            "{name}: {pw:?} ends above {po:?}"
+        );
+        for p in &with.phases {
+            assert!(
+                p.hand_error_m < 0.01,
+                "{name} '{}': hand error {} m after the swap",
+                p.phase,
+                p.hand_error_m
+            );
+        }
+        if without.exhaustion.is_none() {
+            assert!(
+                with.exhaustion.is_none(),
+                "{name}: the swap exhausts: {:?}",
+                with.exhaustion
+            );
+        }
+        let [parked_with, parked_without] =
+            [&with, &without].map(|s| s.phases.iter().filter(|p| !p.at_limits.is_empty()).count());
+        assert!(
+            parked_with <= parked_without,
+            "{name}: the swap parks {parked_with} phases at a limit, against {parked_without}"
         );
     }
 }
