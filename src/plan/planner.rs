@@ -371,7 +371,7 @@ impl<'t> Planner<'t> {
                     if !fatigue_only {
                         // a swap trades no comfort for fatigue: the candidate may be no more
                         // awkward than the posture it replaces (the objective's weight alone let
-                        // shelf trade 14–20° more trunk twist and a 70° wrist for 20 % less U)
+                        // shelf trade up to 25° more trunk twist and a 70° wrist for 21 % less U)
                         let d = &self.solver.discomfort;
                         if d.value(cand) > d.value(&gp.q[g]) + 1e-9
                             || d.parks_beyond(cand, &d.clear_of_limits(&gp.q[g]))

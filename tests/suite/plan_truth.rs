@@ -171,15 +171,21 @@ fn cross_seeding_only_lowers_the_first_plans_objective() {
         .unwrap()
         .summary
         .passes;
-        assert!(
-            with.len() >= without.len() && with[..without.len()] == without[..],
-            "{name}: the passes without the round {without:?} are not the first of {with:?}"
-        );
-        assert!(
-            with.last().unwrap() <= &(without.last().unwrap() * (1.0 + 1e-12)),
-            "{name}: {with:?} ends above {without:?}"
-        );
+        assert_only_extends(&format!("{name}, the round"), &with, &without);
     }
+}
+
+/// A search stage only extends the passes: those without it (`without`) are exactly the first of
+/// those with it (`with`), and `with` ends no higher.
+fn assert_only_extends(what: &str, with: &[f64], without: &[f64]) {
+    assert!(
+        with.len() >= without.len() && with[..without.len()] == without[..],
+        "{what}: the passes without it {without:?} are not the first of {with:?}"
+    );
+    assert!(
+        with.last().unwrap() <= &(without.last().unwrap() * (1.0 + 1e-12)),
+        "{what}: {with:?} ends above {without:?}"
+    );
 }
 
 /// The pool swap (each group's posture traded for another local optimum the search found, where
@@ -202,15 +208,7 @@ fn the_pool_swap_only_lowers_the_first_plans_objective() {
         )
         .unwrap()
         .summary;
-        let (pw, po) = (&with.passes, &without.passes);
-        assert!(
-            pw.len() >= po.len() && pw[..po.len()] == po[..],
-            "{name}: the passes without the swap {po:?} are not the first of {pw:?}"
-        );
-        assert!(
-            pw.last().unwrap() <= &(po.last().unwrap() * (1.0 + 1e-12)),
-            "{name}: {pw:?} ends above {po:?}"
-        );
+        assert_only_extends(&format!("{name}, the swap"), &with.passes, &without.passes);
         for p in &with.phases {
             assert!(
                 p.hand_error_m < 0.01,
