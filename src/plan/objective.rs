@@ -25,8 +25,20 @@
 //! follow. A limit the neutral posture sits at (a straight knee or elbow) is not penalised: it
 //! is where the joint rests. The task's discomfort is the mean over the cycle's phases, times the task's
 //! `discomfort_weight` (default 0.1): in a one-phase task, one joint driven from mid-range to its
-//! limit costs as much as about 10 % more fatigue (J is the logarithm of the total), 30° of trunk
-//! twist about 1.2 %.
+//! limit costs as much as about 10 % more fatigue (J is the logarithm of the total).
+//!
+//! **Assessment zones** (off by default; the task's `objective.zone_weight`). Twisting, bending
+//! sideways, leaning back and bending the wrist cost the worker almost no gravity moment, so
+//! neither fatigue nor the gentle displacement term keeps a plan from them, and RULA and REBA
+//! score them high. Each of those directions gets a zone around neutral (10° of trunk twist, 15°
+//! of wrist flexion, …: [`assessment_zone_deg`]) and, beyond it, `zone_weight · (excess/range)²`
+//! (the square's onset smoothed over the first 2 % of the range, [`ZONE_ONSET`], so that the term
+//! is C²). At `zone_weight` 30, in a one-phase task a held trunk twist of 15° costs as much as
+//! about 3.5 % more fatigue, 20° about 8 %, 30° about 28 % (twist range ±45°: about
+//! `0.1·(10·(θ/90°)² + 30·((θ−10.9°)/90°)²)` added to J). It is off by default because, measured
+//! on the nine shipped tasks, it trades fatigue and the share of women strong enough for the
+//! postures' scores, and the global search does not yet find that trade reliably (README, The
+//! planner).
 
 use super::task::Task;
 use crate::fatigue::MaState;
@@ -351,6 +363,11 @@ impl LoadCost for NoLoadCost {
 pub struct Discomfort {
     /// Per q index: Some((lower, upper, neutral, weight)) for actuated joints with a finite range.
     ranges: Vec<Option<(f64, f64, f64, f64)>>,
+    /// Per q index: the assessment zone (below, above neutral) \[rad\] beyond which the task's
+    /// `zone_weight` prices the excess ([`assessment_zone_deg`]); infinite where none.
+    zones: Vec<(f64, f64)>,
+    /// The task's `objective.zone_weight` (0 = no zones).
+    zone_weight: f64,
     /// Per q index: whether the (lower, upper) end is penalised. A limit the neutral posture
     /// sits at (a straight knee or elbow, a foot flat) is the joint's natural rest, not a strain.
     ends: Vec<(bool, bool)>,
@@ -370,6 +387,56 @@ pub fn displacement_weight(joint: &str) -> f64 {
 
 /// Weight of the end-of-range penalty of every joint.
 pub const END_WEIGHT: f64 = 1.0;
+
+/// The excess (fraction of the range) over which the zone penalty's curvature rises from 0 to
+/// its full value: the penalty is C², so the SQP's curvature model does not jump at a zone's edge.
+pub const ZONE_ONSET: f64 = 0.02;
+
+/// The zone penalty of an excess `x ≥ 0` (fraction of the range), with its first and second
+/// derivatives: `x³/(3δ)` up to δ = [`ZONE_ONSET`], then `x² − δx + δ²/3` (value, slope and
+/// curvature continuous at δ; beyond it, `(x − δ/2)² + δ²/12`: a square shifted by half the onset).
+fn zone_penalty(x: f64) -> (f64, f64, f64) {
+    let d = ZONE_ONSET;
+    if x <= 0.0 {
+        (0.0, 0.0, 0.0)
+    } else if x < d {
+        (x * x * x / (3.0 * d), x * x / d, 2.0 * x / d)
+    } else {
+        (x * x - d * x + d * d / 3.0, 2.0 * x - d, 2.0)
+    }
+}
+
+/// The zone around neutral (degrees below, above) within which RULA, REBA and ISO 11226 score a
+/// joint as neutral or mildly loaded, for the directions where the plans' awkward postures cost
+/// little fatigue (a twist, a sideways bend, a bent wrist or a leaning back carry almost no
+/// gravity moment): beyond it, posture-opt prices the excess quadratically, so a plan leaves the
+/// zone only when that buys clearly less fatigue. Trunk and neck flexion get no upper bound here:
+/// the fatigue term already prices them (the trunk's and the head's weight), and a zone there
+/// would trade a stoop for a deep squat the knees pay for. `None`: no zone.
+///
+/// * trunk extension 5° (REBA scores extension as flexion; ISO 11226:2000: a backward
+///   inclination without support is not acceptable);
+/// * trunk lateral bending and twist 10° each side (RULA and REBA add a point for any; 10° is an
+///   ASSUMPTION: what an observer scoring RULA from the side would not see);
+/// * neck extension 5° (RULA: any extension scores 4), lateral bending and twist 10° (RULA and
+///   REBA +1; 10° as for the trunk, ASSUMPTION);
+/// * wrist flexion and extension 15° (RULA: beyond 15° scores 3; REBA: beyond 15° scores 2),
+///   deviation 10° (RULA +1 for any; 10°, ASSUMPTION).
+pub fn assessment_zone_deg(joint: &str) -> Option<(f64, f64)> {
+    let j = joint
+        .strip_prefix("r_")
+        .or_else(|| joint.strip_prefix("l_"))
+        .unwrap_or(joint);
+    match j {
+        "lumbar_flexion" => Some((5.0, f64::INFINITY)),
+        "lumbar_lateral_bending" | "lumbar_axial_rotation" => Some((10.0, 10.0)),
+        "neck_flexion" => Some((5.0, f64::INFINITY)),
+        "neck_lateral_bending" | "neck_axial_rotation" => Some((10.0, 10.0)),
+        "wrist_flexion" => Some((15.0, 15.0)),
+        "wrist_deviation" => Some((10.0, 10.0)),
+        _ => None,
+    }
+}
 
 impl Discomfort {
     /// The actuated joints of `task` with finite ranges; neutral is 0 clamped into the range.
@@ -403,35 +470,84 @@ impl Discomfort {
                 None => (false, false),
             })
             .collect();
-        Discomfort { ranges, ends }
+        let zones = (0..m.nq())
+            .map(
+                |k| match (&ranges[k], assessment_zone_deg(&m.q_joint(k).name)) {
+                    (Some(_), Some((below, above))) => (below.to_radians(), above.to_radians()),
+                    _ => (f64::INFINITY, f64::INFINITY),
+                },
+            )
+            .collect();
+        Discomfort {
+            ranges,
+            ends,
+            zones,
+            zone_weight: task.objective.zone_weight,
+        }
+    }
+
+    /// The weight of the assessment zones (the task's `objective.zone_weight`; 0 = off).
+    pub fn zone_weight(&self) -> f64 {
+        self.zone_weight
+    }
+
+    /// Sets the weight of the assessment zones (finite, ≥ 0).
+    pub fn set_zone_weight(&mut self, zone_weight: f64) {
+        debug_assert!(zone_weight.is_finite() && zone_weight >= 0.0);
+        self.zone_weight = zone_weight;
+    }
+
+    /// The assessment-zone excess of joint `k` at `q` \[rad\], signed (negative below).
+    fn zone_excess(&self, k: usize, q: f64, neutral: f64) -> f64 {
+        let (below, above) = self.zones[k];
+        let d = q - neutral;
+        if d > above {
+            d - above
+        } else if d < -below {
+            d + below
+        } else {
+            0.0
+        }
+    }
+
+    /// Joint `k`'s term at `q` \[rad\]: value, slope × range, curvature bound (≥ 0) × range²
+    /// and the range; `None` for a joint without a finite range. (The slope and curvature are
+    /// scaled by the range only where they are added up, so that the arithmetic, and with it the
+    /// search's numerical path, is the same as without zones when the zones are off.)
+    fn joint_term(&self, k: usize, q: f64) -> Option<(f64, f64, f64, f64)> {
+        let (lo, hi, n, a) = self.ranges[k]?;
+        let range = hi - lo;
+        let x = (q - n) / range;
+        let (p, dp, ddp) = end_penalty((q - lo) / range, self.ends[k]);
+        let e = self.zone_excess(k, q, n) / range;
+        let (z, dz, ddz) = zone_penalty(e.abs());
+        Some((
+            a * x * x + END_WEIGHT * p + self.zone_weight * z,
+            2.0 * a * x + END_WEIGHT * dp + self.zone_weight * dz * e.signum(),
+            2.0 * a + END_WEIGHT * ddp.max(0.0) + self.zone_weight * ddz,
+            range,
+        ))
     }
 
     /// Value, with gradient and diagonal curvature (≥ 0) added into `grad`/`curv` scaled by `w`.
     pub fn eval(&self, q: &[f64], w: f64, grad: &mut [f64], curv: &mut [f64]) -> f64 {
         let mut total = 0.0;
-        for (k, r) in self.ranges.iter().enumerate() {
-            let Some((lo, hi, n, a)) = *r else { continue };
-            let range = hi - lo;
-            let x = (q[k] - n) / range;
-            let u = (q[k] - lo) / range;
-            let (p, dp, ddp) = end_penalty(u, self.ends[k]);
-            total += a * x * x + END_WEIGHT * p;
-            grad[k] += w * (2.0 * a * x + END_WEIGHT * dp) / range;
-            curv[k] += w * (2.0 * a + END_WEIGHT * ddp.max(0.0)) / (range * range);
+        for (k, &qk) in q.iter().enumerate().take(self.ranges.len()) {
+            let Some((v, dv, ddv, range)) = self.joint_term(k, qk) else {
+                continue;
+            };
+            total += v;
+            grad[k] += w * dv / range;
+            curv[k] += w * ddv / (range * range);
         }
         w * total
     }
 
     /// Value only (unweighted).
     pub fn value(&self, q: &[f64]) -> f64 {
-        let mut total = 0.0;
-        for (k, r) in self.ranges.iter().enumerate() {
-            let Some((lo, hi, n, a)) = *r else { continue };
-            let range = hi - lo;
-            let x = (q[k] - n) / range;
-            total += a * x * x + END_WEIGHT * end_penalty((q[k] - lo) / range, self.ends[k]).0;
-        }
-        total
+        (0..self.ranges.len())
+            .filter_map(|k| self.joint_term(k, q[k]))
+            .fold(0.0, |total, (v, _, _, _)| total + v)
     }
 
     /// The joints of `q` clear of their limits by more than five times [`AT_LIMIT_FRACTION`] of
@@ -507,6 +623,84 @@ mod tests {
                 / (2.0 * h);
             assert!((end_penalty(u, (true, true)).1 - fd).abs() < 1e-5);
         }
+    }
+
+    /// The trunk-twist term against its hand derivation: displacement `10·(θ/90°)²` plus, at
+    /// zone_weight 30, the zone's smoothed `30·((|θ|−10°)/90°)²` beyond 10°; no end penalty
+    /// below 36° (the middle 80 % of ±45°); slope equal to the value's central difference;
+    /// slope and curvature continuous across the zone's edge and the end of its onset.
+    #[test]
+    fn assessment_zone_prices_the_twist_beyond_ten_degrees() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf.yaml");
+        let mut task = Task::from_file(path).unwrap();
+        let k = task.model.q_index("lumbar_axial_rotation").unwrap();
+        let off = Discomfort::new(&task);
+        let zone_weight = 30.0;
+        task.objective.zone_weight = zone_weight;
+        let d = Discomfort::new(&task);
+        let j = task.model.q_joint(k);
+        let range = j.upper_rad - j.lower_rad;
+        let range_deg = range.to_degrees();
+        assert!((range_deg - 90.0).abs() < 1e-3, "twist range {range_deg}°");
+        let base = vec![0.0; task.model.nq()];
+        let at = |theta_deg: f64| {
+            let mut q = base.clone();
+            q[k] = theta_deg.to_radians();
+            q
+        };
+        let hand = |theta_deg: f64| {
+            // beyond the onset, the shifted square (x − δ/2)² + δ²/12; within it, x³/(3δ)
+            let x = (theta_deg.abs() - 10.0).max(0.0) / range_deg;
+            let zone = if x < ZONE_ONSET {
+                x.powi(3) / (3.0 * ZONE_ONSET)
+            } else {
+                (x - ZONE_ONSET / 2.0).powi(2) + ZONE_ONSET.powi(2) / 12.0
+            };
+            10.0 * (theta_deg / range_deg).powi(2) + zone_weight * zone
+        };
+        for theta in [
+            -30.0, -12.0, -10.5, 0.0, 5.0, 10.0, 11.0, 15.0, 20.0, 30.0, 35.0,
+        ] {
+            let got = d.value(&at(theta)) - d.value(&base);
+            assert!(
+                (got - hand(theta)).abs() < 1e-9,
+                "θ {theta}°: {got} vs {}",
+                hand(theta)
+            );
+            // with the default zone_weight 0, the displacement alone
+            let plain = off.value(&at(theta)) - off.value(&base);
+            assert!((plain - 10.0 * (theta / range_deg).powi(2)).abs() < 1e-9);
+        }
+        let slope = |theta_deg: f64| {
+            let (mut g, mut c) = (vec![0.0; base.len()], vec![0.0; base.len()]);
+            d.eval(&at(theta_deg), 1.0, &mut g, &mut c);
+            (g[k], c[k])
+        };
+        let h = 1e-6;
+        for theta in [-25.0_f64, -11.0, 5.0, 10.9, 20.0, 33.0] {
+            let q = theta.to_radians();
+            let fd = (d.value(&at((q + h).to_degrees())) - d.value(&at((q - h).to_degrees())))
+                / (2.0 * h);
+            let (g, c) = slope(theta);
+            assert!((g - fd).abs() < 1e-6, "θ {theta}°: slope {g} vs {fd}");
+            assert!(c > 0.0);
+        }
+        // slope and curvature continuous at the zone's edge and at the end of the onset
+        let onset_deg = 10.0 + ZONE_ONSET * range_deg;
+        for edge in [10.0, onset_deg] {
+            let (inside, outside) = (slope(edge - 1e-7), slope(edge + 1e-7));
+            assert!(
+                (inside.0 - outside.0).abs() < 1e-5,
+                "{edge}°: {inside:?} {outside:?}"
+            );
+            assert!(
+                (inside.1 - outside.1).abs() < 1e-4,
+                "{edge}°: {inside:?} {outside:?}"
+            );
+        }
+        // beyond the onset the curvature bound includes the zone's full 2·30/range²
+        let beyond = slope(onset_deg + 1.0).1;
+        assert!((beyond - 2.0 * (10.0 + zone_weight) / (range * range)).abs() < 1e-9);
     }
 
     #[test]

@@ -476,7 +476,15 @@ impl<'t> Planner<'t> {
         cycles: u64,
         fatigue_only: bool,
     ) -> Result<(GroupPostures, Vec<f64>), PlanError> {
-        let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0)?;
+        // a fatigue-only plan starts from the same postures whatever the task's comfort
+        // settings: the seeds' nearest-to-neutral measure then leaves out the assessment zones
+        let zone_weight = self.solver.discomfort.zone_weight();
+        if fatigue_only {
+            self.solver.discomfort.set_zone_weight(0.0);
+        }
+        let seeded = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0);
+        self.solver.discomfort.set_zone_weight(zone_weight);
+        let mut gp = seeded?;
         self.neutral = Some(gp.clone());
         self.pools = vec![Vec::new(); self.groups.len()];
         let mut passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;

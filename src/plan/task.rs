@@ -310,6 +310,12 @@ pub struct ObjectiveFile {
     /// Weight of the joint-range discomfort term (0 = fatigue only; default 0.1, 0..100).
     #[serde(default = "default_discomfort")]
     pub discomfort_weight: f64,
+    /// Weight of the assessment-zone part of the discomfort term: trunk twist and side bend
+    /// beyond 10°, leaning back beyond 5°, the wrist bent beyond 15° or deviated beyond 10°
+    /// priced quadratically (default 0 = off, 0..1000; 30 to 300 keeps most postures within
+    /// RULA's zones, at more fatigue).
+    #[serde(default)]
+    pub zone_weight: f64,
     /// Smallest distance between the body and an obstacle \[m\] (default 0.01, 0..0.5).
     #[serde(default = "default_clearance")]
     pub clearance_m: f64,
@@ -333,6 +339,7 @@ impl Default for ObjectiveFile {
     fn default() -> Self {
         ObjectiveFile {
             discomfort_weight: default_discomfort(),
+            zone_weight: 0.0,
             clearance_m: default_clearance(),
             balance_margin_m: default_margin(),
         }
@@ -407,6 +414,8 @@ pub struct FatigueChoice {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ObjectiveSettings {
     pub discomfort_weight: f64,
+    /// Weight of the assessment zones within the discomfort term (0 = off).
+    pub zone_weight: f64,
     pub clearance_m: f64,
     pub balance_margin_m: f64,
 }
@@ -849,6 +858,12 @@ impl Task {
                 format!("must be within 0..100, got {}", o.discomfort_weight),
             ));
         }
+        if !(o.zone_weight.is_finite() && (0.0..=1000.0).contains(&o.zone_weight)) {
+            return Err(field(
+                "objective.zone_weight",
+                format!("must be within 0..1000, got {}", o.zone_weight),
+            ));
+        }
         if !(o.clearance_m.is_finite() && (0.0..=0.5).contains(&o.clearance_m)) {
             return Err(field(
                 "objective.clearance_m",
@@ -886,6 +901,7 @@ impl Task {
             capacity_tolerance: f.replan.capacity_tolerance,
             objective: ObjectiveSettings {
                 discomfort_weight: o.discomfort_weight,
+                zone_weight: o.zone_weight,
                 clearance_m: o.clearance_m,
                 balance_margin_m: o.balance_margin_m,
             },

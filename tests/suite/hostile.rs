@@ -717,6 +717,7 @@ fn task_field_words() -> Vec<String> {
         "recovery",
         "overrides",
         "discomfort_weight",
+        "zone_weight",
         "clearance_m",
         "balance_margin_m",
         "origin",

@@ -543,3 +543,43 @@ fn standing_at_rest_is_sustainable_in_any_stance() {
         }
     }
 }
+
+/// `objective.zone_weight` prices the directions RULA and REBA score beyond their zones (trunk
+/// twist and side bend beyond 10°, leaning back beyond 5°, the wrist bent beyond 15° or deviated
+/// beyond 10°): at 300 no phase of the shelf job leaves a zone by more than 5°. With
+/// `--fatigue-only` the zones are off with the rest of the discomfort term: the same plan at any
+/// zone_weight.
+#[test]
+fn zone_weight_keeps_the_shelf_postures_in_the_assessment_zones() {
+    use posture_opt::plan::objective::assessment_zone_deg;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let base = Task::from_file(root.join("tasks/shelf.yaml")).unwrap();
+    assert_eq!(base.objective.zone_weight, 0.0, "zones are off by default");
+    let mut zoned = base.clone();
+    zoned.objective.zone_weight = 300.0;
+    let names = zoned.joint_names();
+    let plan = plan_task_with(&zoned, held(false)).unwrap();
+    for ph in &plan.summary.phases {
+        for (k, name) in names.iter().enumerate() {
+            let Some((below, above)) = assessment_zone_deg(name) else {
+                continue;
+            };
+            let d_deg = ph.q_rad[k].to_degrees();
+            let excess = (d_deg - above).max(-below - d_deg).max(0.0);
+            assert!(
+                excess <= 5.0,
+                "{}: {name} at {d_deg:.1}°, {excess:.1}° beyond its zone ({below}°, {above}°)",
+                ph.phase
+            );
+        }
+    }
+    let fatigue_only = PlanOptions {
+        fatigue_only: true,
+        ..held(false)
+    };
+    let (a, b) = (
+        plan_task_with(&base, fatigue_only).unwrap(),
+        plan_task_with(&zoned, fatigue_only).unwrap(),
+    );
+    assert_eq!(a.summary.total_u, b.summary.total_u);
+}
