@@ -585,12 +585,23 @@ fn segment_segment_m(
 /// A right hand reaching across the body to the left, close to the waist: the arm passes in
 /// front of the trunk but not through it. Every capsule of the right arm keeps the task's
 /// clearance from every capsule of the trunk, pelvis, head and thighs (capsule geometry read from
-/// the model, placed by forward kinematics, distances computed here), and the target is reached.
+/// the model, placed by forward kinematics, distances computed here), and the target is reached:
+/// at the default clearance (10 mm), and at 60 mm, which the constraint must enforce against the
+/// plan's preference (the arm's planned postures at the default keep 10–20 mm, depending on
+/// which local optimum the search finds), so there the constraint is active, not idle.
 #[test]
 fn a_cross_body_reach_does_not_pass_through_the_body() {
-    let text = BASE
+    cross_body_reach(None);
+    cross_body_reach(Some(0.06));
+}
+
+fn cross_body_reach(clearance_m: Option<f64>) {
+    let mut text = BASE
         .replace("[0.35, -0.2, 1.0]", "[0.12, 0.25, 1.0]")
         .replace("cycles: 10", "cycles: 2");
+    if let Some(c) = clearance_m {
+        text.push_str(&format!("objective: {{clearance_m: {c}}}\n"));
+    }
     let t = Task::from_yaml_str(&text, std::path::Path::new("across.yaml")).unwrap();
     let p = plan(&t);
     let ph = &p.summary.phases[0];
@@ -631,12 +642,14 @@ fn a_cross_body_reach_does_not_pass_through_the_body() {
             );
         }
     }
-    // the arm rests against the body at the planner's clearance (10 mm by default): the
-    // self-collision constraint is active, not idle
-    assert!(
-        closest < 0.012,
-        "closest gap {closest} m: the constraint was not tested"
-    );
+    // at the wider clearance the arm rests against it: the self-collision constraint is
+    // active, not idle
+    if let Some(c) = clearance_m {
+        assert!(
+            closest < c + 2e-3,
+            "closest gap {closest} m: the constraint was not tested"
+        );
+    }
 }
 
 /// The held object is part of the geometry: a box carried 5 cm into a table is a collision of
