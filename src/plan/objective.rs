@@ -363,11 +363,9 @@ impl LoadCost for NoLoadCost {
 pub struct Discomfort {
     /// Per q index: Some((lower, upper, neutral, weight)) for actuated joints with a finite range.
     ranges: Vec<Option<(f64, f64, f64, f64)>>,
-    /// Per q index: the assessment zone (below, above neutral) \[rad\] beyond which the task's
-    /// `zone_weight` prices the excess ([`assessment_zone_deg`]); infinite where none.
+    /// Per q index: the assessment zone (below, above neutral) \[rad\] beyond which a solve's
+    /// zone weight prices the excess ([`assessment_zone_deg`]); infinite where none.
     zones: Vec<(f64, f64)>,
-    /// The task's `objective.zone_weight` (0 = no zones).
-    zone_weight: f64,
     /// Per q index: whether the (lower, upper) end is penalised. A limit the neutral posture
     /// sits at (a straight knee or elbow, a foot flat) is the joint's natural rest, not a strain.
     ends: Vec<(bool, bool)>,
@@ -482,19 +480,7 @@ impl Discomfort {
             ranges,
             ends,
             zones,
-            zone_weight: task.objective.zone_weight,
         }
-    }
-
-    /// The weight of the assessment zones (the task's `objective.zone_weight`; 0 = off).
-    pub fn zone_weight(&self) -> f64 {
-        self.zone_weight
-    }
-
-    /// Sets the weight of the assessment zones (finite, ≥ 0).
-    pub fn set_zone_weight(&mut self, zone_weight: f64) {
-        debug_assert!(zone_weight.is_finite() && zone_weight >= 0.0);
-        self.zone_weight = zone_weight;
     }
 
     /// The assessment-zone excess of joint `k` at `q` \[rad\], signed (negative below).
@@ -510,11 +496,13 @@ impl Discomfort {
         }
     }
 
-    /// Joint `k`'s term at `q` \[rad\]: value, slope × range, curvature bound (≥ 0) × range²
-    /// and the range; `None` for a joint without a finite range. (The slope and curvature are
-    /// scaled by the range only where they are added up, so that the arithmetic, and with it the
-    /// search's numerical path, is the same as without zones when the zones are off.)
-    fn joint_term(&self, k: usize, q: f64) -> Option<(f64, f64, f64, f64)> {
+    /// Joint `k`'s term at `q` \[rad\] with the assessment zones weighted by `zone_weight` (the
+    /// task's `objective.zone_weight`; 0 = off): value, slope × range, curvature bound (≥ 0) ×
+    /// range² and the range; `None` for a joint without a finite range. (The slope and
+    /// curvature are scaled by the range only where they are added up, so that the arithmetic,
+    /// and with it the search's numerical path, is the same as without zones when the zones are
+    /// off.)
+    fn joint_term(&self, k: usize, q: f64, zone_weight: f64) -> Option<(f64, f64, f64, f64)> {
         let (lo, hi, n, a) = self.ranges[k]?;
         let range = hi - lo;
         let x = (q - n) / range;
@@ -522,18 +510,26 @@ impl Discomfort {
         let e = self.zone_excess(k, q, n) / range;
         let (z, dz, ddz) = zone_penalty(e.abs());
         Some((
-            a * x * x + END_WEIGHT * p + self.zone_weight * z,
-            2.0 * a * x + END_WEIGHT * dp + self.zone_weight * dz * e.signum(),
-            2.0 * a + END_WEIGHT * ddp.max(0.0) + self.zone_weight * ddz,
+            a * x * x + END_WEIGHT * p + zone_weight * z,
+            2.0 * a * x + END_WEIGHT * dp + zone_weight * dz * e.signum(),
+            2.0 * a + END_WEIGHT * ddp.max(0.0) + zone_weight * ddz,
             range,
         ))
     }
 
-    /// Value, with gradient and diagonal curvature (≥ 0) added into `grad`/`curv` scaled by `w`.
-    pub fn eval(&self, q: &[f64], w: f64, grad: &mut [f64], curv: &mut [f64]) -> f64 {
+    /// Value, with gradient and diagonal curvature (≥ 0) added into `grad`/`curv` scaled by `w`;
+    /// the assessment zones weighted by `zone_weight`.
+    pub fn eval(
+        &self,
+        q: &[f64],
+        w: f64,
+        zone_weight: f64,
+        grad: &mut [f64],
+        curv: &mut [f64],
+    ) -> f64 {
         let mut total = 0.0;
         for (k, &qk) in q.iter().enumerate().take(self.ranges.len()) {
-            let Some((v, dv, ddv, range)) = self.joint_term(k, qk) else {
+            let Some((v, dv, ddv, range)) = self.joint_term(k, qk, zone_weight) else {
                 continue;
             };
             total += v;
@@ -543,10 +539,10 @@ impl Discomfort {
         w * total
     }
 
-    /// Value only (unweighted).
-    pub fn value(&self, q: &[f64]) -> f64 {
+    /// Value only (unweighted), the assessment zones weighted by `zone_weight`.
+    pub fn value(&self, q: &[f64], zone_weight: f64) -> f64 {
         (0..self.ranges.len())
-            .filter_map(|k| self.joint_term(k, q[k]))
+            .filter_map(|k| self.joint_term(k, q[k], zone_weight))
             .fold(0.0, |total, (v, _, _, _)| total + v)
     }
 
@@ -632,12 +628,10 @@ mod tests {
     #[test]
     fn assessment_zone_prices_the_twist_beyond_ten_degrees() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf.yaml");
-        let mut task = Task::from_file(path).unwrap();
+        let task = Task::from_file(path).unwrap();
         let k = task.model.q_index("lumbar_axial_rotation").unwrap();
-        let off = Discomfort::new(&task);
-        let zone_weight = 30.0;
-        task.objective.zone_weight = zone_weight;
         let d = Discomfort::new(&task);
+        let zone_weight = 30.0;
         let j = task.model.q_joint(k);
         let range = j.upper_rad - j.lower_rad;
         let range_deg = range.to_degrees();
@@ -661,25 +655,26 @@ mod tests {
         for theta in [
             -30.0, -12.0, -10.5, 0.0, 5.0, 10.0, 11.0, 15.0, 20.0, 30.0, 35.0,
         ] {
-            let got = d.value(&at(theta)) - d.value(&base);
+            let got = d.value(&at(theta), zone_weight) - d.value(&base, zone_weight);
             assert!(
                 (got - hand(theta)).abs() < 1e-9,
                 "θ {theta}°: {got} vs {}",
                 hand(theta)
             );
             // with the default zone_weight 0, the displacement alone
-            let plain = off.value(&at(theta)) - off.value(&base);
+            let plain = d.value(&at(theta), 0.0) - d.value(&base, 0.0);
             assert!((plain - 10.0 * (theta / range_deg).powi(2)).abs() < 1e-9);
         }
         let slope = |theta_deg: f64| {
             let (mut g, mut c) = (vec![0.0; base.len()], vec![0.0; base.len()]);
-            d.eval(&at(theta_deg), 1.0, &mut g, &mut c);
+            d.eval(&at(theta_deg), 1.0, zone_weight, &mut g, &mut c);
             (g[k], c[k])
         };
         let h = 1e-6;
         for theta in [-25.0_f64, -11.0, 5.0, 10.9, 20.0, 33.0] {
             let q = theta.to_radians();
-            let fd = (d.value(&at((q + h).to_degrees())) - d.value(&at((q - h).to_degrees())))
+            let fd = (d.value(&at((q + h).to_degrees()), zone_weight)
+                - d.value(&at((q - h).to_degrees()), zone_weight))
                 / (2.0 * h);
             let (g, c) = slope(theta);
             assert!((g - fd).abs() < 1e-6, "θ {theta}°: slope {g} vs {fd}");

@@ -156,6 +156,7 @@ impl<'t> Planner<'t> {
             targets_m: [None, None],
             hand_force_n: [Vector3::zeros(); 2],
             discomfort_weight: 1.0,
+            zone_weight: task.objective.zone_weight,
             capacity: &ones,
             memory: None,
         };
@@ -239,7 +240,13 @@ impl<'t> Planner<'t> {
         );
         let j = cost.value(&loads[self.groups[0][0]]);
         let d: f64 = (0..self.groups.len())
-            .map(|g| self.group_weight(g, fatigue_only) * self.solver.discomfort.value(&gp.q[g]))
+            .map(|g| {
+                self.group_weight(g, fatigue_only)
+                    * self
+                        .solver
+                        .discomfort
+                        .value(&gp.q[g], self.task.objective.zone_weight)
+            })
             .sum();
         j + d
     }
@@ -282,6 +289,7 @@ impl<'t> Planner<'t> {
                     targets_m: rep.targets_m,
                     hand_force_n: rep.hand_force_n,
                     discomfort_weight: self.group_weight(g, fatigue_only),
+                    zone_weight: t.objective.zone_weight,
                     capacity: &capacity,
                     memory: Some(g),
                 };
@@ -372,8 +380,8 @@ impl<'t> Planner<'t> {
                         // a swap trades no comfort for fatigue: the candidate may be no more
                         // awkward than the posture it replaces (the objective's weight alone let
                         // shelf trade up to 25° more trunk twist and a 70° wrist for 21 % less U)
-                        let d = &self.solver.discomfort;
-                        if d.value(cand) > d.value(&gp.q[g]) + 1e-9
+                        let (d, zw) = (&self.solver.discomfort, self.task.objective.zone_weight);
+                        if d.value(cand, zw) > d.value(&gp.q[g], zw) + 1e-9
                             || d.parks_beyond(cand, &d.clear_of_limits(&gp.q[g]))
                         {
                             continue;
@@ -434,6 +442,7 @@ impl<'t> Planner<'t> {
         &mut self,
         cost_of: &mut dyn FnMut() -> Box<dyn LoadCost>,
         weight: f64,
+        zone_weight: f64,
     ) -> Result<GroupPostures, PlanError> {
         let t = self.task;
         let n = self.groups.len();
@@ -449,6 +458,7 @@ impl<'t> Planner<'t> {
                 targets_m: rep.targets_m,
                 hand_force_n: rep.hand_force_n,
                 discomfort_weight: weight,
+                zone_weight,
                 capacity: &big,
                 memory: None,
             };
@@ -480,13 +490,12 @@ impl<'t> Planner<'t> {
         // settings: the seeds' nearest-to-neutral measure then leaves out the assessment zones.
         // (The rest posture, solved in `new` before the options are known, keeps them; on the
         // nine shipped tasks it lies at least 5° inside every zone, where the term is zero.)
-        let zone_weight = self.solver.discomfort.zone_weight();
-        if fatigue_only {
-            self.solver.discomfort.set_zone_weight(0.0);
-        }
-        let seeded = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0);
-        self.solver.discomfort.set_zone_weight(zone_weight);
-        let mut gp = seeded?;
+        let zone_weight = if fatigue_only {
+            0.0
+        } else {
+            self.task.objective.zone_weight
+        };
+        let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0, zone_weight)?;
         self.neutral = Some(gp.clone());
         self.pools = vec![Vec::new(); self.groups.len()];
         let mut passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
@@ -553,7 +562,11 @@ impl<'t> Planner<'t> {
             Some(self.simulate(gp, passes, held)?)
         };
         let weight_free = 0.0;
-        let gp = self.solve_independent(&mut || Box::new(SquaredLoads), weight_free)?;
+        let gp = self.solve_independent(
+            &mut || Box::new(SquaredLoads),
+            weight_free,
+            t.objective.zone_weight,
+        )?;
         let min_load = self.simulate(gp, Vec::new(), held)?;
         let gp = self.neutral.clone().expect("the main plan was made first");
         let neutral = self.simulate(gp, Vec::new(), held)?;
@@ -941,7 +954,7 @@ impl<'t> Planner<'t> {
                         .into_iter()
                         .map(|(k, _, _)| t.model.q_joint(k).name.clone())
                         .collect(),
-                    discomfort: d.value(q),
+                    discomfort: d.value(q, t.objective.zone_weight),
                     converged: sol.converged,
                     kkt_residual: sol.kkt_residual,
                     iterations: sol.iterations,

@@ -77,6 +77,8 @@ pub struct PhaseSpec<'a> {
     pub targets_m: [Option<Vector3<f64>>; 2],
     pub hand_force_n: [Vector3<f64>; 2],
     pub discomfort_weight: f64,
+    /// Weight of the discomfort's assessment zones (the task's `objective.zone_weight`, or 0).
+    pub zone_weight: f64,
     pub capacity: &'a [f64],
     /// A key under which the solver keeps this phase's learnt curvature between solves (the
     /// group index); `None` keeps nothing.
@@ -345,6 +347,7 @@ impl<'t> PhaseSolver<'t> {
                 targets_m: along(lambda),
                 hand_force_n: spec.hand_force_n,
                 discomfort_weight: spec.discomfort_weight,
+                zone_weight: spec.zone_weight,
                 capacity: spec.capacity,
                 memory: None,
             };
@@ -394,6 +397,7 @@ impl<'t> PhaseSolver<'t> {
             cost,
             discomfort: &self.discomfort,
             discomfort_weight: spec.discomfort_weight,
+            zone_weight: spec.zone_weight,
             capacity: spec.capacity,
             curvature: memory.as_mut(),
         };

@@ -127,6 +127,8 @@ pub struct PhaseProblem<'a> {
     pub cost: &'a mut dyn LoadCost,
     pub discomfort: &'a Discomfort,
     pub discomfort_weight: f64,
+    /// Weight of the discomfort's assessment zones (0 = off).
+    pub zone_weight: f64,
     /// Capacity bound per half-joint (the load it may hold).
     pub capacity: &'a [f64],
     /// Curvature learnt by an earlier solve of this phase (n × n), reused as the start and
@@ -260,7 +262,8 @@ fn merit(
     let s = work.settings;
     pw.statics(task, q, &prob.hand_force_n);
     pw.half_joint_loads(task, q, &mut work.f);
-    let j = prob.cost.value(&work.f) + prob.discomfort_weight * prob.discomfort.value(q);
+    let j = prob.cost.value(&work.f)
+        + prob.discomfort_weight * prob.discomfort.value(q, prob.zone_weight);
     let mut res = std::mem::take(&mut work.eq_res);
     equality_residuals(task, pw, &prob.targets_m, &mut res);
     let eq_l1: f64 = res.iter().map(|x| x.abs()).sum();
@@ -328,6 +331,7 @@ fn build_qp(
     prob.discomfort.eval(
         q,
         prob.discomfort_weight,
+        prob.zone_weight,
         &mut work.dq_grad,
         &mut work.dq_curv,
     );
