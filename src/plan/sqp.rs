@@ -164,6 +164,16 @@ pub struct SqpWork {
     reset_once: bool,
     grad_l: Vec<f64>,
     bs: Vec<f64>,
+    /// Scratch of the BFGS update (step, gradient change, damped change) and of the line
+    /// search (the scaled step, the trial before its correction), posture-sized; and of the
+    /// predicted decrease, QP-variable-sized.
+    sv: Vec<f64>,
+    y: Vec<f64>,
+    r: Vec<f64>,
+    step: Vec<f64>,
+    q_plain: Vec<f64>,
+    xr: Vec<f64>,
+    px: Vec<f64>,
 }
 
 /// Merit terms of a posture.
@@ -223,6 +233,13 @@ impl SqpWork {
             reset_once: false,
             grad_l: vec![0.0; n],
             bs: vec![0.0; n],
+            sv: vec![0.0; n],
+            y: vec![0.0; n],
+            r: vec![0.0; n],
+            step: vec![0.0; n],
+            q_plain: vec![0.0; n],
+            xr: vec![0.0; sizes.cols().n_var],
+            px: vec![0.0; sizes.cols().n_var],
         })
     }
 }
@@ -504,11 +521,11 @@ fn reset_curvature(work: &mut SqpWork) {
 fn lagrangian_gradient(work: &mut SqpWork, z_from_last: bool) {
     let n = work.qp.sizes.n;
     let z = if z_from_last {
-        work.last_z.clone()
+        &work.last_z
     } else {
-        work.qp.z.clone()
+        &work.qp.z
     };
-    work.qp.at_z_posture(&z, &mut work.grad_l);
+    work.qp.at_z_posture(z, &mut work.grad_l);
     for k in 0..n {
         work.grad_l[k] += work.qp.q[work.qp.cols.dq + k];
     }
@@ -520,11 +537,18 @@ fn update_curvature(work: &mut SqpWork, q: &[f64]) {
     let n = work.qp.sizes.n;
     if work.have_last {
         lagrangian_gradient(work, true);
-        let sv: Vec<f64> = (0..n).map(|k| q[k] - work.last_q[k]).collect();
+        let (mut sv, mut y, mut r) = (
+            std::mem::take(&mut work.sv),
+            std::mem::take(&mut work.y),
+            std::mem::take(&mut work.r),
+        );
+        for k in 0..n {
+            sv[k] = q[k] - work.last_q[k];
+        }
         // y without the discomfort's exact part (kept separately on the diagonal)
-        let y: Vec<f64> = (0..n)
-            .map(|k| work.grad_l[k] - work.last_grad_l[k] - work.dq_curv[k] * sv[k])
-            .collect();
+        for k in 0..n {
+            y[k] = work.grad_l[k] - work.last_grad_l[k] - work.dq_curv[k] * sv[k];
+        }
         for i in 0..n {
             work.bs[i] = (0..n).map(|j| work.bfgs[i * n + j] * sv[j]).sum();
         }
@@ -549,9 +573,9 @@ fn update_curvature(work: &mut SqpWork, q: &[f64]) {
             } else {
                 0.8 * sbs / (sbs - sy)
             };
-            let r: Vec<f64> = (0..n)
-                .map(|i| theta * y[i] + (1.0 - theta) * work.bs[i])
-                .collect();
+            for i in 0..n {
+                r[i] = theta * y[i] + (1.0 - theta) * work.bs[i];
+            }
             let sr: f64 = (0..n).map(|i| sv[i] * r[i]).sum();
             if sr > 1e-16 {
                 for i in 0..n {
@@ -561,6 +585,7 @@ fn update_curvature(work: &mut SqpWork, q: &[f64]) {
                 }
             }
         }
+        (work.sv, work.y, work.r) = (sv, y, r);
     }
     // A curvature far beyond the problem's scale comes from steps across kinks (a torque
     // changing sign, a contact or capacity row switching): it freezes the steps. Start again.
@@ -624,25 +649,31 @@ fn kkt(work: &mut SqpWork) -> (f64, f64) {
 /// The ℓ1 merit's decrease predicted by the QP's solution: the quadratic model of the objective
 /// over the posture and torque variables, from the current point `x0` to the solution, plus each
 /// penalty times the fall of its linearised violation (equality slacks `e`, `v_cap`, `v_geo`).
-fn predicted_decrease(work: &SqpWork, m0: &Merit) -> f64 {
+fn predicted_decrease(work: &mut SqpWork, m0: &Merit) -> f64 {
+    let (mut xr, mut px) = (std::mem::take(&mut work.xr), std::mem::take(&mut work.px));
     let qp = &work.qp;
     let c = qp.cols;
     let s = work.settings;
-    let model = |x: &[f64]| -> f64 {
-        let mut xr = x.to_vec();
-        xr[c.e..].iter_mut().for_each(|v| *v = 0.0);
-        let mut px = vec![0.0; c.n_var];
-        qp.p_times(&xr, &mut px);
-        (0..c.e)
-            .map(|i| 0.5 * px[i] * xr[i] + qp.q[i] * xr[i])
-            .sum()
-    };
     let e_after: f64 = qp.x[c.e..c.v_cap].iter().map(|v| v.abs()).sum();
-    let objective = model(&work.x0) - model(&qp.x);
+    let objective = quadratic_model(qp, &work.x0, &mut xr, &mut px)
+        - quadratic_model(qp, &qp.x, &mut xr, &mut px);
+    (work.xr, work.px) = (xr, px);
     let violations = s.mu_eq * (m0.eq_l1 - e_after)
         + s.mu_geo * (m0.geo - qp.x[c.v_geo].max(0.0))
         + s.mu_cap * (m0.cap - qp.x[c.v_cap].max(0.0));
     (objective + violations).max(0.0)
+}
+
+/// The QP objective's quadratic model over the posture and torque variables at `x` (its slack
+/// entries left out), with scratch `xr` and `px` (QP-variable-sized).
+fn quadratic_model(qp: &PostureQp, x: &[f64], xr: &mut [f64], px: &mut [f64]) -> f64 {
+    let c = qp.cols;
+    xr.copy_from_slice(x);
+    xr[c.e..].iter_mut().for_each(|v| *v = 0.0);
+    qp.p_times(xr, px);
+    (0..c.e)
+        .map(|i| 0.5 * px[i] * xr[i] + qp.q[i] * xr[i])
+        .sum()
 }
 
 /// Optimises the posture `q` (in/out) of one phase.
@@ -704,12 +735,11 @@ pub fn solve_phase(
         let scale = (0..n)
             .map(|k| work.qp.x[k].abs() / step_box(s, task.model.q_joint(k).kind))
             .fold(1.0f64, f64::max);
-        let d: Vec<f64> = (0..n)
-            .map(|k| {
-                let j = task.model.q_joint(k);
-                (q[k] + work.qp.x[k] / scale).clamp(j.lower_rad, j.upper_rad) - q[k]
-            })
-            .collect();
+        let mut d = std::mem::take(&mut work.step);
+        for (k, dk) in d.iter_mut().enumerate() {
+            let j = task.model.q_joint(k);
+            *dk = (q[k] + work.qp.x[k] / scale).clamp(j.lower_rad, j.upper_rad) - q[k];
+        }
         let mut accepted = false;
         let mut alpha = 1.0;
         while alpha >= 1e-8 {
@@ -724,7 +754,8 @@ pub fn solve_phase(
             if !enough(&m1) {
                 // Second-order correction: back onto the curved targets and feet, and out of any
                 // clearance or balance constraint the step crossed.
-                let plain = trial.clone();
+                let mut plain = std::mem::take(&mut work.q_plain);
+                plain.copy_from_slice(&trial);
                 restore(
                     task,
                     scene,
@@ -739,6 +770,7 @@ pub fn solve_phase(
                 } else {
                     trial.copy_from_slice(&plain);
                 }
+                work.q_plain = plain;
             }
             work.q_trial = trial;
             if enough(&m1) {
@@ -749,6 +781,7 @@ pub fn solve_phase(
             }
             alpha *= 0.5;
         }
+        work.step = d;
         if !accepted && !work.reset_once {
             // The curvature learnt across kinks (torques changing sign) can stall the steps:
             // forget it once and retry from the same posture.
