@@ -550,9 +550,47 @@ fn compare_and_sweep_refuse_bad_input_by_name() {
     cli(d, &["sweep", "easy.yaml", "--sample", "many"]).bad(&["--sample"]);
     cli(d, &["sweep", "easy.yaml", "--seed", "x"]).bad(&["--seed"]);
     cli(d, &["sweep", "easy.yaml", "--capacity-floor", "1"]).bad(&["--capacity-floor"]);
+    cli(d, &["sweep", "easy.yaml", "--capacity-floor", "-0.5"]).bad(&["--capacity-floor"]);
+    for tol in ["1e-3", "0", "-1e-9", "nan", "tight"] {
+        for sub in [
+            &["plan", "easy.yaml"][..],
+            &["compare", "easy.yaml", "high.yaml"],
+            &["sweep", "easy.yaml"],
+        ] {
+            let args: Vec<&str> = sub.iter().copied().chain(["--qp-tolerance", tol]).collect();
+            cli(d, &args).bad(&["--qp-tolerance"]);
+        }
+    }
     cli(d, &["sweep", "easy.yaml", "--shard", "2/1"]).bad(&["--shard"]);
     cli(d, &["sweep", "--merge", "easy.yaml"]).bad(&["easy.yaml"]);
     cli(d, &["sweep", "--merge", "nope.json"]).bad(&["nope.json"]);
+}
+
+/// `--qp-tolerance` reaches the solver: at the default's own value (1e-9) the plan is the default
+/// plan bit for bit, and a looser value still plans the task (a valid plan, every number finite).
+#[test]
+fn the_qp_tolerance_option_reaches_the_solver() {
+    let dir = tempdir();
+    let d = dir.path();
+    write_layouts(d);
+    let text = |args: &[&str]| {
+        let o = cli(d, args);
+        o.ok();
+        o.stdout_text()
+    };
+    assert_eq!(
+        text(&["plan", "easy.yaml", "--json"]),
+        text(&["plan", "easy.yaml", "--json", "--qp-tolerance", "1e-9"])
+    );
+    let loose = json(
+        d,
+        &["plan", "easy.yaml", "--json", "--qp-tolerance", "1e-6"],
+    );
+    assert!(
+        loose["summary"]["total_u"]
+            .as_f64()
+            .is_some_and(|u| u > 0.0)
+    );
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -136,8 +136,19 @@ pub struct AssessArgs {
     #[arg(long)]
     pub report: Option<PathBuf>,
     /// Capacity floor for the work/rest advice (fraction of MVC, strictly between 0 and 1).
-    #[arg(long, default_value_t = posture_opt::assess::rest::DEFAULT_CAPACITY_FLOOR, value_parser = parse_floor)]
+    #[arg(long, default_value_t = posture_opt::assess::rest::DEFAULT_CAPACITY_FLOOR, value_parser = parse_floor, allow_negative_numbers = true)]
     pub capacity_floor: f64,
+    /// The QP solver's gap and feasibility tolerance (1e-12 to 1e-4; default 1e-9). A plan, or a
+    /// ranking, that changes with it hinges on the solver's numerical path, not on the task.
+    #[arg(long, value_parser = parse_qp_tolerance, allow_hyphen_values = true)]
+    pub qp_tolerance: Option<f64>,
+}
+
+fn parse_qp_tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if t.is_finite() && (1e-12..=1e-4).contains(&t) => Ok(t),
+        _ => Err(format!("must be a number from 1e-12 to 1e-4, got '{s}'")),
+    }
 }
 
 fn parse_floor(s: &str) -> Result<f64, String> {
@@ -149,11 +160,18 @@ fn parse_floor(s: &str) -> Result<f64, String> {
 
 impl AssessArgs {
     pub fn plan_options(&self) -> posture_opt::plan::PlanOptions {
-        posture_opt::plan::PlanOptions {
+        let mut opts = posture_opt::plan::PlanOptions {
             adapt: !self.no_adapt,
             fatigue_only: self.fatigue_only,
             ..Default::default()
+        };
+        if let Some(t) = self.qp_tolerance {
+            opts.sqp.precision = posture_opt::plan::qp::QpPrecision {
+                tol_gap: t,
+                tol_feas: t,
+            };
         }
+        opts
     }
 }
 
