@@ -567,7 +567,9 @@ fn compare_and_sweep_refuse_bad_input_by_name() {
 }
 
 /// `--qp-tolerance` reaches the solver: at the default's own value (1e-9) the plan is the default
-/// plan bit for bit, and a looser value still plans the task (a valid plan, every number finite).
+/// plan bit for bit, while the loosest allowed value (1e-4) stops the interior-point solves
+/// earlier and so changes the plan's digits — and still plans the task (a valid plan, every
+/// number finite).
 #[test]
 fn the_qp_tolerance_option_reaches_the_solver() {
     let dir = tempdir();
@@ -582,9 +584,14 @@ fn the_qp_tolerance_option_reaches_the_solver() {
         text(&["plan", "easy.yaml", "--json"]),
         text(&["plan", "easy.yaml", "--json", "--qp-tolerance", "1e-9"])
     );
+    assert_ne!(
+        text(&["plan", "easy.yaml", "--json"]),
+        text(&["plan", "easy.yaml", "--json", "--qp-tolerance", "1e-4"]),
+        "the option did not reach the solver"
+    );
     let loose = json(
         d,
-        &["plan", "easy.yaml", "--json", "--qp-tolerance", "1e-6"],
+        &["plan", "easy.yaml", "--json", "--qp-tolerance", "1e-4"],
     );
     assert!(
         loose["summary"]["total_u"]
