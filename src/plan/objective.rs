@@ -20,12 +20,17 @@
 //! `γ_i ((q − q_N)/(q_U − q_L))²` (displacement from the neutral posture, normalised by the
 //! range, with joint weights γ that make the trunk's sideways bending and twisting the costliest,
 //! [`displacement_weight`]) plus an end-of-range penalty that is zero in the middle 80 % of the
-//! range and rises as `((0.1 − u)/0.1)³` toward each limit (`u` the position in the range, 0..1),
+//! range and rises as `3·((0.1 − u)/0.1)³` toward each limit (`u` the position in the range, 0..1),
 //! replacing Marler's steeper `[0.5 sin(…) + 0.5]¹⁰⁰` bumps by a C² polynomial the SQP can
 //! follow. A limit the neutral posture sits at (a straight knee or elbow) is not penalised: it
 //! is where the joint rests. The task's discomfort is the mean over the cycle's phases, times the task's
 //! `discomfort_weight` (default 0.1): in a one-phase task, one joint driven from mid-range to its
-//! limit costs as much as about 10 % more fatigue (J is the logarithm of the total).
+//! limit costs as much as about 40 % more fatigue (J is the logarithm of the total;
+//! `0.1·(0.5² + 3)` = 0.33 in J). The end weight 3 ([`END_WEIGHT`]) was measured on the nine
+//! shipped tasks: at 1 the plans parked the wrist or the shoulder at a limit where that saved a
+//! few per cent of fatigue (shelf's 'place high board', shelf_heavy's 'carry'); at 3 no phase
+//! sits at a limit; at 10 six of the nine held plans tired more and one (shelf_lowered) moved by
+//! 2.5 % with the QP's precision.
 //!
 //! **Assessment zones** (off by default; the task's `objective.zone_weight`). Twisting, bending
 //! sideways, leaning back and bending the wrist cost the worker almost no gravity moment, so
@@ -383,8 +388,33 @@ pub fn displacement_weight(joint: &str) -> f64 {
     }
 }
 
-/// Weight of the end-of-range penalty of every joint.
-pub const END_WEIGHT: f64 = 1.0;
+/// Weight of the end-of-range penalty of every joint (see the module doc for why 3).
+pub const END_WEIGHT: f64 = 3.0;
+
+/// The discomfort term's shape: the weights of its assessment zones and of its end-of-range
+/// penalty.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shape {
+    pub zone_weight: f64,
+    pub end_weight: f64,
+}
+
+impl Shape {
+    /// The objective's: the task's `objective.zone_weight` and [`END_WEIGHT`].
+    pub fn of(task: &Task) -> Self {
+        Shape {
+            zone_weight: task.objective.zone_weight,
+            end_weight: END_WEIGHT,
+        }
+    }
+
+    /// The nearest-to-neutral measure of a fatigue-only plan's starting postures, the same
+    /// whatever the task's comfort settings: displacement only, no zones, no end penalty.
+    pub const DISPLACEMENT: Shape = Shape {
+        zone_weight: 0.0,
+        end_weight: 0.0,
+    };
+}
 
 /// The excess (fraction of the range) over which the zone penalty's curvature rises from 0 to
 /// its full value: the penalty is C², so the SQP's curvature model does not jump at a zone's edge.
@@ -496,13 +526,16 @@ impl Discomfort {
         }
     }
 
-    /// Joint `k`'s term at `q` \[rad\] with the assessment zones weighted by `zone_weight` (the
-    /// task's `objective.zone_weight`; 0 = off): value, slope × range, curvature bound (≥ 0) ×
+    /// Joint `k`'s term at `q` \[rad\] of the given shape (zones and end penalty weighted): value, slope × range, curvature bound (≥ 0) ×
     /// range² and the range; `None` for a joint without a finite range. (The slope and
     /// curvature are scaled by the range only where they are added up, so that the arithmetic,
     /// and with it the search's numerical path, is the same as without zones when the zones are
     /// off.)
-    fn joint_term(&self, k: usize, q: f64, zone_weight: f64) -> Option<(f64, f64, f64, f64)> {
+    fn joint_term(&self, k: usize, q: f64, shape: Shape) -> Option<(f64, f64, f64, f64)> {
+        let Shape {
+            zone_weight,
+            end_weight,
+        } = shape;
         let (lo, hi, n, a) = self.ranges[k]?;
         let range = hi - lo;
         let x = (q - n) / range;
@@ -510,26 +543,19 @@ impl Discomfort {
         let e = self.zone_excess(k, q, n) / range;
         let (z, dz, ddz) = zone_penalty(e.abs());
         Some((
-            a * x * x + END_WEIGHT * p + zone_weight * z,
-            2.0 * a * x + END_WEIGHT * dp + zone_weight * dz * e.signum(),
-            2.0 * a + END_WEIGHT * ddp.max(0.0) + zone_weight * ddz,
+            a * x * x + end_weight * p + zone_weight * z,
+            2.0 * a * x + end_weight * dp + zone_weight * dz * e.signum(),
+            2.0 * a + end_weight * ddp.max(0.0) + zone_weight * ddz,
             range,
         ))
     }
 
     /// Value, with gradient and diagonal curvature (≥ 0) added into `grad`/`curv` scaled by `w`;
-    /// the assessment zones weighted by `zone_weight`.
-    pub fn eval(
-        &self,
-        q: &[f64],
-        w: f64,
-        zone_weight: f64,
-        grad: &mut [f64],
-        curv: &mut [f64],
-    ) -> f64 {
+    /// of the given shape.
+    pub fn eval(&self, q: &[f64], w: f64, shape: Shape, grad: &mut [f64], curv: &mut [f64]) -> f64 {
         let mut total = 0.0;
         for (k, &qk) in q.iter().enumerate().take(self.ranges.len()) {
-            let Some((v, dv, ddv, range)) = self.joint_term(k, qk, zone_weight) else {
+            let Some((v, dv, ddv, range)) = self.joint_term(k, qk, shape) else {
                 continue;
             };
             total += v;
@@ -539,10 +565,10 @@ impl Discomfort {
         w * total
     }
 
-    /// Value only (unweighted), the assessment zones weighted by `zone_weight`.
-    pub fn value(&self, q: &[f64], zone_weight: f64) -> f64 {
+    /// Value only (unweighted), of the given shape.
+    pub fn value(&self, q: &[f64], shape: Shape) -> f64 {
         (0..self.ranges.len())
-            .filter_map(|k| self.joint_term(k, q[k], zone_weight))
+            .filter_map(|k| self.joint_term(k, q[k], shape))
             .fold(0.0, |total, (v, _, _, _)| total + v)
     }
 
@@ -632,6 +658,14 @@ mod tests {
         let k = task.model.q_index("lumbar_axial_rotation").unwrap();
         let d = Discomfort::new(&task);
         let zone_weight = 30.0;
+        let zoned = Shape {
+            zone_weight,
+            end_weight: END_WEIGHT,
+        };
+        let plain_shape = Shape {
+            zone_weight: 0.0,
+            end_weight: END_WEIGHT,
+        };
         let j = task.model.q_joint(k);
         let range = j.upper_rad - j.lower_rad;
         let range_deg = range.to_degrees();
@@ -655,26 +689,26 @@ mod tests {
         for theta in [
             -30.0, -12.0, -10.5, 0.0, 5.0, 10.0, 11.0, 15.0, 20.0, 30.0, 35.0,
         ] {
-            let got = d.value(&at(theta), zone_weight) - d.value(&base, zone_weight);
+            let got = d.value(&at(theta), zoned) - d.value(&base, zoned);
             assert!(
                 (got - hand(theta)).abs() < 1e-9,
                 "θ {theta}°: {got} vs {}",
                 hand(theta)
             );
             // with the default zone_weight 0, the displacement alone
-            let plain = d.value(&at(theta), 0.0) - d.value(&base, 0.0);
+            let plain = d.value(&at(theta), plain_shape) - d.value(&base, plain_shape);
             assert!((plain - 10.0 * (theta / range_deg).powi(2)).abs() < 1e-9);
         }
         let slope = |theta_deg: f64| {
             let (mut g, mut c) = (vec![0.0; base.len()], vec![0.0; base.len()]);
-            d.eval(&at(theta_deg), 1.0, zone_weight, &mut g, &mut c);
+            d.eval(&at(theta_deg), 1.0, zoned, &mut g, &mut c);
             (g[k], c[k])
         };
         let h = 1e-6;
         for theta in [-25.0_f64, -11.0, 5.0, 10.9, 20.0, 33.0] {
             let q = theta.to_radians();
-            let fd = (d.value(&at((q + h).to_degrees()), zone_weight)
-                - d.value(&at((q - h).to_degrees()), zone_weight))
+            let fd = (d.value(&at((q + h).to_degrees()), zoned)
+                - d.value(&at((q - h).to_degrees()), zoned))
                 / (2.0 * h);
             let (g, c) = slope(theta);
             assert!((g - fd).abs() < 1e-6, "θ {theta}°: slope {g} vs {fd}");

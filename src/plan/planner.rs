@@ -36,7 +36,7 @@
 //! targets (discomfort only).
 
 use super::objective::{
-    AT_LIMIT_FRACTION, Discomfort, FatigueCost, LoadCost, NoLoadCost, SquaredLoads,
+    AT_LIMIT_FRACTION, Discomfort, FatigueCost, LoadCost, NoLoadCost, Shape, SquaredLoads,
 };
 use super::posture::{Other, PostureWork};
 use super::qp::QpError;
@@ -156,9 +156,8 @@ impl<'t> Planner<'t> {
             targets_m: [None, None],
             hand_force_n: [Vector3::zeros(); 2],
             discomfort_weight: 1.0,
-            zone_weight: task.objective.zone_weight,
+            shape: Shape::of(task),
             capacity: &ones,
-            memory: None,
         };
         let mut q_rest = vec![0.0; task.model.nq()];
         let zero = q_rest.clone();
@@ -242,10 +241,7 @@ impl<'t> Planner<'t> {
         let d: f64 = (0..self.groups.len())
             .map(|g| {
                 self.group_weight(g, fatigue_only)
-                    * self
-                        .solver
-                        .discomfort
-                        .value(&gp.q[g], self.task.objective.zone_weight)
+                    * self.solver.discomfort.value(&gp.q[g], Shape::of(self.task))
             })
             .sum();
         j + d
@@ -289,9 +285,8 @@ impl<'t> Planner<'t> {
                     targets_m: rep.targets_m,
                     hand_force_n: rep.hand_force_n,
                     discomfort_weight: self.group_weight(g, fatigue_only),
-                    zone_weight: t.objective.zone_weight,
+                    shape: Shape::of(t),
                     capacity: &capacity,
-                    memory: Some(g),
                 };
                 let start = gp.q[g].clone();
                 let mut q = start.clone();
@@ -380,7 +375,7 @@ impl<'t> Planner<'t> {
                         // a swap trades no comfort for fatigue: the candidate may be no more
                         // awkward than the posture it replaces (the objective's weight alone let
                         // shelf trade up to 25° more trunk twist and a 70° wrist for 21 % less U)
-                        let (d, zw) = (&self.solver.discomfort, self.task.objective.zone_weight);
+                        let (d, zw) = (&self.solver.discomfort, Shape::of(self.task));
                         if d.value(cand, zw) > d.value(&gp.q[g], zw) + 1e-9
                             || d.parks_beyond(cand, &d.clear_of_limits(&gp.q[g]))
                         {
@@ -442,7 +437,7 @@ impl<'t> Planner<'t> {
         &mut self,
         cost_of: &mut dyn FnMut() -> Box<dyn LoadCost>,
         weight: f64,
-        zone_weight: f64,
+        shape: Shape,
     ) -> Result<GroupPostures, PlanError> {
         let t = self.task;
         let n = self.groups.len();
@@ -458,9 +453,8 @@ impl<'t> Planner<'t> {
                 targets_m: rep.targets_m,
                 hand_force_n: rep.hand_force_n,
                 discomfort_weight: weight,
-                zone_weight,
+                shape,
                 capacity: &big,
-                memory: None,
             };
             let mut cost = cost_of();
             let mut q = gp.q[g].clone();
@@ -486,16 +480,17 @@ impl<'t> Planner<'t> {
         cycles: u64,
         fatigue_only: bool,
     ) -> Result<(GroupPostures, Vec<f64>), PlanError> {
-        // a fatigue-only plan starts from the same postures whatever the task's comfort
-        // settings: the seeds' nearest-to-neutral measure then leaves out the assessment zones.
-        // (The rest posture, solved in `new` before the options are known, keeps them; on the
-        // nine shipped tasks it lies at least 5° inside every zone, where the term is zero.)
-        let zone_weight = if fatigue_only {
-            0.0
+        // a fatigue-only plan starts from the same postures whatever the comfort term's
+        // settings: the seeds' nearest-to-neutral measure is then the displacement alone, no
+        // assessment zones and no end penalty. (The rest posture, solved in `new` before the
+        // options are known, keeps them; on the nine shipped tasks it lies at least 5° inside
+        // every zone and clear of the end zones, where both are zero.)
+        let shape = if fatigue_only {
+            Shape::DISPLACEMENT
         } else {
-            self.task.objective.zone_weight
+            Shape::of(self.task)
         };
-        let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0, zone_weight)?;
+        let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0, shape)?;
         self.neutral = Some(gp.clone());
         self.pools = vec![Vec::new(); self.groups.len()];
         let mut passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
@@ -562,11 +557,8 @@ impl<'t> Planner<'t> {
             Some(self.simulate(gp, passes, held)?)
         };
         let weight_free = 0.0;
-        let gp = self.solve_independent(
-            &mut || Box::new(SquaredLoads),
-            weight_free,
-            t.objective.zone_weight,
-        )?;
+        let gp =
+            self.solve_independent(&mut || Box::new(SquaredLoads), weight_free, Shape::of(t))?;
         let min_load = self.simulate(gp, Vec::new(), held)?;
         let gp = self.neutral.clone().expect("the main plan was made first");
         let neutral = self.simulate(gp, Vec::new(), held)?;
@@ -954,7 +946,7 @@ impl<'t> Planner<'t> {
                         .into_iter()
                         .map(|(k, _, _)| t.model.q_joint(k).name.clone())
                         .collect(),
-                    discomfort: d.value(q, t.objective.zone_weight),
+                    discomfort: d.value(q, Shape::of(t)),
                     converged: sol.converged,
                     kkt_residual: sol.kkt_residual,
                     iterations: sol.iterations,

@@ -12,7 +12,7 @@
 //! search started from.
 
 use super::ik::{IkSettings, solve_ik};
-use super::objective::{Discomfort, LoadCost};
+use super::objective::{Discomfort, LoadCost, Shape};
 use super::posture::{PostureWork, Scene};
 use super::qp::QpError;
 use super::sqp::{PhaseProblem, SqpOutcome, SqpSettings, SqpWork, solve_phase};
@@ -68,8 +68,6 @@ pub struct PhaseSolver<'t> {
     /// Every converged, feasible posture the multi-starts found since the caller last cleared
     /// it (the planner's pool of local optima per group, see `Planner::pool_swap`).
     pub pool: Vec<Vec<f64>>,
-    /// Curvature learnt per phase key (see [`PhaseSpec::memory`]).
-    curvature: std::collections::HashMap<usize, Vec<f64>>,
 }
 
 /// A phase to solve: targets, hand forces, and how its cost is weighed.
@@ -77,12 +75,9 @@ pub struct PhaseSpec<'a> {
     pub targets_m: [Option<Vector3<f64>>; 2],
     pub hand_force_n: [Vector3<f64>; 2],
     pub discomfort_weight: f64,
-    /// Weight of the discomfort's assessment zones (the task's `objective.zone_weight`, or 0).
-    pub zone_weight: f64,
+    /// The discomfort's shape (the objective's, or the fatigue-only seeds' measure).
+    pub shape: Shape,
     pub capacity: &'a [f64],
-    /// A key under which the solver keeps this phase's learnt curvature between solves (the
-    /// group index); `None` keeps nothing.
-    pub memory: Option<usize>,
 }
 
 fn set(task: &Task, q: &mut [f64], name: &str, v: f64) {
@@ -107,7 +102,6 @@ impl<'t> PhaseSolver<'t> {
             q_rest: vec![0.0; task.model.nq()],
             extra_seeds: Vec::new(),
             pool: Vec::new(),
-            curvature: std::collections::HashMap::new(),
         })
     }
 
@@ -347,9 +341,8 @@ impl<'t> PhaseSolver<'t> {
                 targets_m: along(lambda),
                 hand_force_n: spec.hand_force_n,
                 discomfort_weight: spec.discomfort_weight,
-                zone_weight: spec.zone_weight,
+                shape: spec.shape,
                 capacity: spec.capacity,
-                memory: None,
             };
             let mut qq = found
                 .as_ref()
@@ -388,18 +381,14 @@ impl<'t> PhaseSolver<'t> {
         settings: SqpSettings,
     ) -> Result<SqpOutcome, QpError> {
         self.work.settings = settings;
-        let mut memory = spec
-            .memory
-            .map(|k| self.curvature.remove(&k).unwrap_or_default());
         let mut prob = PhaseProblem {
             targets_m: spec.targets_m,
             hand_force_n: spec.hand_force_n,
             cost,
             discomfort: &self.discomfort,
             discomfort_weight: spec.discomfort_weight,
-            zone_weight: spec.zone_weight,
+            shape: spec.shape,
             capacity: spec.capacity,
-            curvature: memory.as_mut(),
         };
         let r = solve_phase(
             self.task,
@@ -409,9 +398,6 @@ impl<'t> PhaseSolver<'t> {
             &mut prob,
             q,
         );
-        if let (Some(k), Some(m)) = (spec.memory, memory) {
-            self.curvature.insert(k, m);
-        }
         self.work.settings = self.settings;
         r
     }

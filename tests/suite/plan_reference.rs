@@ -402,7 +402,11 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
         // The rest posture is an input of the problem (docs/optimisation-problem.md §4: given, and
         // reported by the plan); the reference was solved with inputs/<task>.rest_posture.json.
         // If the plan holds another one the two optimise different problems and the reference
-        // must be regenerated: that is reported as stale, not as a planner defect.
+        // must be regenerated: that is reported as stale, not as a planner defect. The rest
+        // posture is itself solved to the KKT tolerance (1e-5), so two solver versions may hold
+        // it that far apart: 1e-4 rad is allowed (measured: the reference's best shelf plan
+        // evaluated by the reference with a rest posture 1.5e-5 rad off changes by 5e-7 of its
+        // total).
         let names = plan["joints"].as_array().expect("joints");
         let rest = plan["summary"]["rest_posture_rad"]
             .as_array()
@@ -427,7 +431,7 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
             u / best,
             u / med,
         );
-        if rest_diff > 1e-5 {
+        if rest_diff > 1e-4 {
             stale.push(format!(
                 "{}: the plan's rest posture differs from the reference's by {rest_diff:.3e} rad",
                 r.key
