@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Abridge a posture-opt JSON document for the README: every key is kept, every array is cut to
-its first element followed by a string "... (N more)", numbers are rounded to 4 significant
+one element — its most complete (the one with the most keys, nested keys counted; the first
+among equals), so that an optional object such as a baseline's `exhaustion` shows its keys —
+followed by a string "... (N more)", numbers are rounded to 4 significant
 digits, arrays of plain values are written on one line. The result is valid JSON with the same
 key structure as the document.
 
@@ -10,13 +12,24 @@ import json
 import sys
 
 
-def abridge(v, keep=1):
+def key_count(v):
     if isinstance(v, dict):
-        return {k: abridge(x, keep) for k, x in v.items()}
+        return sum(1 + key_count(x) for x in v.values())
     if isinstance(v, list):
-        head = [abridge(x, keep) for x in v[:keep]]
-        if len(v) > keep:
-            head.append(f"... ({len(v) - keep} more)")
+        return max((key_count(x) for x in v), default=0)
+    return 0
+
+
+def abridge(v):
+    if isinstance(v, dict):
+        return {k: abridge(x) for k, x in v.items()}
+    if isinstance(v, list):
+        if not v:
+            return []
+        best = max(range(len(v)), key=lambda i: (key_count(v[i]), -i))
+        head = [abridge(v[best])]
+        if len(v) > 1:
+            head.append(f"... ({len(v) - 1} more)")
         return head
     if isinstance(v, float):
         return float(f"{v:.4g}")
