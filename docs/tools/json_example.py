@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Abridge a posture-opt JSON document for the README: every key is kept, every array is cut to
+"""Abridge a posture-opt JSON document for docs/plan-json.md: every key is kept, every array is cut to
 one element — its most complete (the one with the most keys, nested keys counted; the first
 among equals), so that an optional object such as a baseline's `exhaustion` shows its keys —
 followed by a string "... (N more)", numbers are rounded to 4 significant
@@ -7,7 +7,13 @@ digits, arrays of plain values are written on one line. The result is valid JSON
 key structure as the document.
 
     posture-opt plan tasks/pallet.yaml --json | python3 docs/tools/json_example.py > example.json
+    posture-opt plan tasks/pallet.yaml --json | python3 docs/tools/json_example.py --update
+
+With --update [FILE] (default docs/plan-json.md, beside this script's folder) the ```json block
+after the marker `<!-- pallet plan json -->` in FILE is replaced by the result (the example that
+tests/suite/cli.rs checks against a real run) instead of printing it.
 """
+import os
 import json
 import sys
 
@@ -49,5 +55,23 @@ def dump(v, indent=0):
     return json.dumps(v, ensure_ascii=False)
 
 
+MARKER = "<!-- pallet plan json -->"
+
+
+def update(path, example):
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    start = text.index(MARKER)
+    open_at = text.index("```json\n", start) + len("```json\n")
+    close_at = text.index("\n```", open_at)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text[:open_at] + example + text[close_at:])
+
+
 if __name__ == "__main__":
-    print(dump(abridge(json.load(sys.stdin))))
+    example = dump(abridge(json.load(sys.stdin)))
+    if len(sys.argv) > 1 and sys.argv[1] == "--update":
+        default = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "plan-json.md")
+        update(sys.argv[2] if len(sys.argv) > 2 else default, example)
+    else:
+        print(example)

@@ -1,4 +1,4 @@
-"""Prints the README's planner results table from `posture-opt plan TASK --json` documents.
+"""Prints the planner results table (docs/results.md) from `posture-opt plan TASK --json` documents.
 
 Usage: python3 docs/tools/results_table.py [POSTURE_OPT]   (default: target/release/posture-opt)
 Run from the repository root; it plans every task listed below (a few minutes).

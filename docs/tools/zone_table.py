@@ -1,4 +1,4 @@
-"""Prints the README's assessment-zone table: each shipped task planned (default, adaptive) with
+"""Prints the assessment-zone table (docs/results.md): each shipped task planned (default, adaptive) with
 `objective.zone_weight` 0 (the default), 30 and 300.
 
 Usage: python3 docs/tools/zone_table.py [POSTURE_OPT]   (default: target/release/posture-opt)
