@@ -37,6 +37,9 @@ pub struct ArmAngles {
     pub wrist_twist_fraction: f64,
     /// Forearm pronation (supination negative) from the mid-position, thumb forward.
     pub forearm_pronation_deg: f64,
+    /// The upper arm's angle against the vertical (shoulder to elbow against straight down),
+    /// whatever the trunk does: ISO 11226's "upper arm elevation".
+    pub upper_arm_elevation_deg: f64,
     /// The hand works across the body's midline / more than 10 cm out to the side of the shoulder.
     pub hand_across_midline: bool,
     pub hand_out_to_side: bool,
@@ -51,6 +54,9 @@ pub struct BodyAngles {
     /// Toward the left positive.
     pub trunk_twist_deg: f64,
     pub neck_flexion_deg: f64,
+    /// The head's long axis against the vertical in the body's sagittal plane (forward positive):
+    /// ISO 11226's "head inclination".
+    pub head_inclination_deg: f64,
     pub neck_side_bend_deg: f64,
     pub neck_twist_deg: f64,
     pub right: ArmAngles,
@@ -118,6 +124,8 @@ impl BodyAngles {
         };
         let h_axis = r_trunk.transpose() * (r_head * Vector3::z());
         let neck_flexion_deg = deg(h_axis.x.atan2(h_axis.z));
+        let h_world = r_head * Vector3::z();
+        let head_inclination_deg = deg(h_world.dot(&fwd).atan2(h_world.z));
         let neck_side_bend_deg = deg(h_axis.y.clamp(-1.0, 1.0).asin());
         let neck_twist_deg = deg(q_rad[joint("neck_axial_rotation")?]);
         let arm = |side: &str, outward_sign: f64| -> Result<ArmAngles, NotWorker> {
@@ -140,6 +148,8 @@ impl BodyAngles {
             let u = (r_trunk.transpose() * (elbow - shoulder)).normalize();
             let v = (r_trunk.transpose() * (wrist - elbow)).normalize();
             let elevation = deg((-u.z).clamp(-1.0, 1.0).acos());
+            let down = (elbow - shoulder).normalize();
+            let upper_arm_elevation_deg = deg((-down.z).clamp(-1.0, 1.0).acos());
             let outward = outward_sign * u.y;
             let backward = u.x < 0.0 && -u.x >= outward.abs();
             let hand_t = r_trunk.transpose() * (grip_w - p_trunk);
@@ -161,6 +171,7 @@ impl BodyAngles {
                 wrist_deviation_deg: deg(q_rad[wdev]),
                 wrist_twist_fraction: twist,
                 forearm_pronation_deg: deg(qp),
+                upper_arm_elevation_deg,
                 hand_across_midline: -outward_sign * hand_t.y > 0.0,
                 hand_out_to_side: outward_sign * (hand_t.y - shoulder_t.y) > OUT_TO_SIDE_M,
             })
@@ -174,6 +185,7 @@ impl BodyAngles {
             trunk_side_bend_deg,
             trunk_twist_deg,
             neck_flexion_deg,
+            head_inclination_deg,
             neck_side_bend_deg,
             neck_twist_deg,
             right,

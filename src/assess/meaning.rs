@@ -58,17 +58,11 @@ pub struct Meaning {
     pub words: String,
 }
 
-/// The meaning of `plan`'s fatigue.
-pub fn meaning(task: &Task, plan: &Plan) -> Meaning {
-    meaning_with(task, plan, &task.fatigue)
-}
-
-/// [`meaning`] with other fatigue parameters (one per half-joint): the plan's postures, another
-/// muscle (the uncertainty analysis).
-pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
+/// Each phase's loads (one per half-joint) in the plan's last postures, then the rest posture's:
+/// `task.phases.len() + 1` rows, in the order of the phases.
+pub fn last_cycle_loads(task: &Task, plan: &Plan) -> Vec<Vec<f64>> {
     let nh = task.half_joints.len();
     let n_ph = task.phases.len();
-    // the last plan's posture per phase: the last steps' postures
     let mut loads: Vec<Vec<f64>> = vec![vec![0.0; nh]; n_ph + 1];
     let st = &plan.steps;
     for i in 0..st.t_s.len() {
@@ -83,6 +77,19 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         };
         loads[idx] = pr.load.clone();
     }
+    loads
+}
+
+/// The meaning of `plan`'s fatigue.
+pub fn meaning(task: &Task, plan: &Plan) -> Meaning {
+    meaning_with(task, plan, &task.fatigue)
+}
+
+/// [`meaning`] with other fatigue parameters (one per half-joint): the plan's postures, another
+/// muscle (the uncertainty analysis).
+pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
+    let nh = task.half_joints.len();
+    let loads = last_cycle_loads(task, plan);
     let durations: Vec<f64> = task
         .phases
         .iter()
@@ -217,7 +224,7 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
             100.0 * c_left
         ),
         None => format!(
-            "this pace can be kept up indefinitely: every muscle group settles above its loads; at the end the {} keep {:.0} % of their strength",
+            "no muscle group gives out at this pace: every group's capacity settles above its loads; at the end the {} keep {:.0} % of their strength",
             group(c_h),
             100.0 * c_left
         ),

@@ -9,7 +9,7 @@
 //! * [`lifting`]: the task's declared lifts through NIOSH; [`phase`]: each phase's posture in
 //!   angles and words, RULA, REBA, low back and % capable; [`meaning`]: what U means (time to
 //!   exhaustion at this pace, endurance used, capacity left); [`uncertainty`]: how those move
-//!   across the fatigue parameters' ranges.
+//!   across the fatigue parameters' ranges; [`verdict`]: the shift verdict from all of them.
 
 pub mod angles;
 pub mod lifting;
@@ -21,6 +21,7 @@ pub mod reba;
 pub mod rest;
 pub mod rula;
 pub mod uncertainty;
+pub mod verdict;
 
 use crate::plan::{Plan, Task};
 use serde::Serialize;
@@ -41,6 +42,8 @@ pub struct Assessment {
     pub lifting: Option<Result<lifting::Lifting, String>>,
     pub meaning: meaning::Meaning,
     pub rest: rest::RestAdvice,
+    /// The shift verdict from every criterion (fatigue model, Jonsson, ISO 11226, Rohmert).
+    pub verdict: verdict::ShiftVerdict,
     /// The key results across the fatigue parameters' documented ranges.
     pub uncertainty: Option<uncertainty::Sensitivity>,
 }
@@ -69,16 +72,28 @@ pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
             Some(x) if x.0 >= b.0 => Some(x),
             _ => Some(b),
         });
+    let meaning = meaning::meaning(task, plan);
+    let rest = rest::rest_advice(task, plan, floor);
+    let lifting = lifting::assess_lifts(task, plan).map(|r| r.map_err(|e| e.to_string()));
+    let verdict = verdict::shift_verdict(
+        task,
+        plan,
+        &meaning,
+        &phases,
+        &rest,
+        lifting.as_ref().and_then(|l| l.as_ref().ok()),
+    );
     Assessment {
+        verdict,
         capable_men,
         capable_women,
         rula_max,
         reba_max,
         back_compression_max_n: back.as_ref().map(|b| b.0),
         back_compression_phase: back.map(|b| b.1),
-        lifting: lifting::assess_lifts(task, plan).map(|r| r.map_err(|e| e.to_string())),
-        meaning: meaning::meaning(task, plan),
-        rest: rest::rest_advice(task, plan, floor),
+        lifting,
+        meaning,
+        rest,
         uncertainty: uncertainty::sensitivity(task, plan, floor),
         phases,
     }

@@ -52,6 +52,16 @@ use nalgebra::Vector3;
 pub enum PlanError {
     #[error("optimiser failed in phase '{phase}': {source}")]
     Qp { phase: String, source: QpError },
+    #[error(
+        "starting postures: {given} given for {phases} phases of {nq} coordinates each (phase {phase} has {len})"
+    )]
+    Hint {
+        given: usize,
+        phases: usize,
+        nq: usize,
+        phase: usize,
+        len: usize,
+    },
 }
 
 /// How to plan.
@@ -120,6 +130,9 @@ pub struct Planner<'t> {
     swap: bool,
     /// Per group, every local optimum the first plan's searches found (for [`Self::pool_swap`]).
     pools: Vec<Vec<Vec<f64>>>,
+    /// Per phase, a posture to start the first plan's global search from as well (another
+    /// worker's plan: [`Self::hint`]).
+    hint: Option<Vec<Vec<f64>>>,
 }
 
 /// Postures of every group, with their solve records.
@@ -180,7 +193,31 @@ impl<'t> Planner<'t> {
             pools: Vec::new(),
             swap: true,
             cross_rounds: CROSS_ROUNDS,
+            hint: None,
         })
+    }
+
+    /// Adds, per phase, a posture the first plan's global search starts from beside its own
+    /// (e.g. the postures another worker's plan found for the same task): the search then
+    /// starts from the nearest-to-neutral posture and this one instead of its generic seeds.
+    /// `q_rad_per_phase` has one posture of the model's coordinates per phase.
+    pub fn hint(&mut self, q_rad_per_phase: &[Vec<f64>]) -> Result<(), PlanError> {
+        let (n, nq) = (self.task.phases.len(), self.task.model.nq());
+        let bad = q_rad_per_phase
+            .iter()
+            .position(|q| q.len() != nq || q.iter().any(|x| !x.is_finite()));
+        if q_rad_per_phase.len() != n || bad.is_some() {
+            let phase = bad.unwrap_or(0);
+            return Err(PlanError::Hint {
+                given: q_rad_per_phase.len(),
+                phases: n,
+                nq,
+                phase,
+                len: q_rad_per_phase.get(phase).map_or(0, Vec::len),
+            });
+        }
+        self.hint = Some(q_rad_per_phase.to_vec());
+        Ok(())
     }
 
     /// The rest posture.
@@ -228,6 +265,19 @@ impl<'t> Planner<'t> {
         cycles: u64,
         fatigue_only: bool,
     ) -> f64 {
+        let (j, d) = self.objective_parts(gp, state, cycles, fatigue_only);
+        j + d
+    }
+
+    /// The objective's fatigue term (ln of the predicted total U over the horizon, monotone in
+    /// it) and its posture term, for the postures held over `cycles` from `state`.
+    fn objective_parts(
+        &mut self,
+        gp: &GroupPostures,
+        state: &[MaState],
+        cycles: u64,
+        fatigue_only: bool,
+    ) -> (f64, f64) {
         let loads = self.phase_loads(gp);
         let mut cost = FatigueCost::new(
             self.task,
@@ -244,7 +294,7 @@ impl<'t> Planner<'t> {
                     * self.solver.discomfort.value(&gp.q[g], Shape::of(self.task))
             })
             .sum();
-        j + d
+        (j, d)
     }
 
     /// Optimises every group's posture for the state and horizon; `multistart` searches the
@@ -295,6 +345,8 @@ impl<'t> Planner<'t> {
                         .filter(|&h| h != g)
                         .map(|h| gp.q[h].clone())
                         .collect();
+                } else if global && let Some(h) = &self.hint {
+                    self.solver.extra_seeds = vec![h[members[0]].clone()];
                 }
                 self.solver.pool.clear();
                 let (out, stats) = self
@@ -663,30 +715,37 @@ impl<'t> Planner<'t> {
                     .zip(&last_plan_capacity)
                     .any(|(s, c)| (s.capacity - c).abs() > t.capacity_tolerance);
                 if interval_passed && moved {
+                    // A re-plan is kept only when it raises neither the predicted fatigue over
+                    // the remaining horizon nor the whole objective there, and lowers one of
+                    // them; else the current postures are held. Each kept re-plan then ends at or below the total the
+                    // held postures would reach from that point, so the adaptive plan never
+                    // ends above the held one.
+                    let horizon = (t.cycles - cycle) as u64;
+                    let before = self.objective_parts(&gp, &state, horizon, opts.fatigue_only);
+                    let held = gp.clone();
                     self.solver.settings.max_iterations = REPLAN_ITERATIONS;
-                    let r = self.optimise(
-                        &mut gp,
-                        &state,
-                        (t.cycles - cycle) as u64,
-                        opts.fatigue_only,
-                        false,
-                        1,
-                    );
+                    let r = self.optimise(&mut gp, &state, horizon, opts.fatigue_only, false, 1);
                     self.solver.settings = opts.sqp;
                     r?;
                     sqp_iterations += gp.solves.iter().map(|s| s.iterations as u64).sum::<u64>();
-                    record(
-                        self,
-                        &gp,
-                        time,
-                        &mut postures,
-                        &mut group_posture_index,
-                        &mut group_loads,
-                    );
-                    replans += 1;
+                    let after = self.objective_parts(&gp, &state, horizon, opts.fatigue_only);
+                    let lowers = after.0 <= before.0 && after.0 + after.1 <= before.0 + before.1;
                     last_plan_capacity = state.iter().map(|s| s.capacity).collect();
                     last_plan_cycle = cycle;
                     last_plan_t = time;
+                    if lowers {
+                        record(
+                            self,
+                            &gp,
+                            time,
+                            &mut postures,
+                            &mut group_posture_index,
+                            &mut group_loads,
+                        );
+                        replans += 1;
+                    } else {
+                        gp = held;
+                    }
                 }
             }
             for si in 0..n_ph + usize::from(t.rest_s > 0.0) {

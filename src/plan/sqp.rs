@@ -131,6 +131,26 @@ pub struct SqpOutcome {
     pub balance_margin_m: f64,
 }
 
+/// A stall counts as stationary when no step lowers the merit function at a feasible point
+/// (constraint violation at most [`STALL_FEASIBILITY`]) whose KKT residual is at most this:
+/// 100 × the default tolerance. There the objective's own rounding, not the solver, stops the
+/// descent (the shipped tasks' stalls end with feasibility ~1e-16 and residuals 1e-5..1e-4).
+pub const STALL_KKT: f64 = 1e-3;
+/// See [`STALL_KKT`].
+pub const STALL_FEASIBILITY: f64 = 1e-6;
+
+impl SqpOutcome {
+    /// Whether the solve's answer is determined: converged, or stalled at a numerically
+    /// stationary, feasible point ([`STALL_KKT`]). An iteration cap, a failed QP or a stall
+    /// far from stationarity is not.
+    pub fn determined(&self) -> bool {
+        self.converged
+            || (self.stop == Stop::LineSearch
+                && self.feasibility <= STALL_FEASIBILITY
+                && self.kkt_residual <= STALL_KKT)
+    }
+}
+
 /// One phase's problem.
 pub struct PhaseProblem<'a> {
     pub targets_m: [Option<Vector3<f64>>; 2],

@@ -87,8 +87,11 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             let _ = writeln!(o, "VERDICT: cannot be done as planned: {}", why.join("; "));
         }
         None => {
-            let _ = writeln!(o, "VERDICT: {}", a.meaning.words);
+            let _ = writeln!(o, "VERDICT: {}", a.verdict.headline);
         }
+    }
+    for c in &a.verdict.criteria {
+        let _ = writeln!(o, "  [{}] {}: {}", c.status.words(), c.name, c.words);
     }
     let _ = writeln!(
         o,
@@ -171,6 +174,8 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             "  optimiser: {} (KKT residual {:.1e}, {} iterations, best of {} starts: #{})",
             if ph.converged {
                 "converged"
+            } else if ph.solve.determined() {
+                "stationary to the objective's precision (no step lowers it)"
             } else {
                 "NOT converged"
             },

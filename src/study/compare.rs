@@ -51,6 +51,24 @@ pub struct LayoutOutcome {
     pub feasible: bool,
     /// What makes it infeasible, in words.
     pub problems: Vec<String>,
+    /// Why the shift verdict for this layout is not determined (as the plan's
+    /// `verdict.not_determined`: a target, clearance or balance the optimiser did not achieve
+    /// without proof that none can; or a phase it did not finish in a plan that fails a
+    /// criterion). An infeasible layout with reasons here is "not determined", not "cannot".
+    #[serde(default)]
+    pub not_determined: Vec<String>,
+    /// The shift verdict's status ("acceptable", "caution", "exceeded", "not_determined") and
+    /// its headline, naming the binding criterion.
+    pub shift_status: crate::assess::verdict::Status,
+    pub shift_verdict: String,
+    /// The NIOSH lifting index that decides the layout: the composite index (CLI) when several
+    /// lifts are declared, else the largest lift's LI; null without declared lifts.
+    #[serde(default)]
+    pub lifting_index: Option<f64>,
+    /// The worse of the ISO 11226 (static postures) and EN 1005-4 (movements) criteria of the
+    /// shift verdict, and its findings.
+    pub posture_status: crate::assess::verdict::Status,
+    pub posture_findings: String,
     /// Smallest clearance of any planned posture to an obstacle or the body itself \[m\], and what.
     pub min_clearance_m: f64,
     pub closest: Option<String>,
@@ -133,7 +151,7 @@ pub const SHARD_KIND: &str = "posture-opt compare shard";
 /// Most layouts in one comparison (split larger studies into shards).
 pub const MAX_LAYOUTS: usize = 1000;
 
-pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then L5/S1 compression within NIOSH's action limit (3400 N) before above it before above the maximum (6400 N), and above the action limit the lower compression, then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
+pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then NIOSH's lifting index where lifts are declared (at most 1 before at most 3 before above 3, and above 1 the lower index), then postures within ISO 11226 and EN 1005-4 (acceptable before conditionally acceptable before not acceptable), then L5/S1 compression within NIOSH's action limit (3400 N) before above it before above the maximum (6400 N), and above the action limit the lower compression, then the share strong enough (99 % of men and 75 % of women before 25 % of men before fewer, NIOSH 1981), then the shift verdict (acceptable before caution before exceeded: the fatigue model, Jonsson's load levels, Rohmert's rest), then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
 
 /// A planned layout: its plan and assessment (for reports).
 pub struct Planned {
@@ -188,6 +206,12 @@ pub fn outcome(
                 .collect()
         })
         .unwrap_or_default();
+    let posture = a
+        .verdict
+        .criteria
+        .iter()
+        .filter(|c| c.id == "iso_11226" || c.id == "en_1005_4")
+        .max_by_key(|c| c.status);
     LayoutOutcome {
         index,
         rank: 0,
@@ -195,6 +219,12 @@ pub fn outcome(
         task: plan.task.clone(),
         feasible: problems.is_empty(),
         problems,
+        not_determined: a.verdict.not_determined.clone(),
+        shift_status: a.verdict.status,
+        shift_verdict: a.verdict.headline.clone(),
+        lifting_index: lifting_index(a),
+        posture_status: posture.map_or(crate::assess::verdict::Status::Acceptable, |c| c.status),
+        posture_findings: posture.map_or(String::new(), |c| c.words.clone()),
         min_clearance_m: if min_clearance.is_finite() {
             min_clearance
         } else {
@@ -232,14 +262,30 @@ pub fn outcome(
     }
 }
 
+/// The lifting index that decides a plan's layout (see [`LayoutOutcome::lifting_index`]).
+fn lifting_index(a: &Assessment) -> Option<f64> {
+    let l = a.lifting.as_ref()?.as_ref().ok()?;
+    l.composite.as_ref().and_then(|c| c.cli).or_else(|| {
+        l.lifts
+            .iter()
+            .filter_map(|r| r.lifting_index)
+            .max_by(|a, b| a.total_cmp(b))
+    })
+}
+
 /// The figures the ranking compares.
 struct Key {
     feasible: bool,
     problems: usize,
     exceeds: bool,
+    /// The lifting index's class (0: at most 1, 1: at most 3, 2: above), then the index above 1.
+    li: (u8, f64),
+    postures: crate::assess::verdict::Status,
     /// NIOSH's class of the L5/S1 compression, then the compression above the action limit.
     back: (u8, f64),
+    capable: u8,
     exhausted_at_s: f64,
+    shift: crate::assess::verdict::Status,
     minutes_to_exhaustion: f64,
     lowest_capacity: f64,
     u_per_hour: f64,
@@ -259,6 +305,10 @@ fn key(o: &LayoutOutcome, variant: Option<usize>) -> Key {
         exceeds: o.exhaustion.as_ref().is_some_and(|e| e.exceeds_strength),
         back: back_key(o.back_compression_max_n),
         exhausted_at_s,
+        li: li_key(o.lifting_index),
+        postures: o.posture_status,
+        capable: capable_class(o.capable_men, o.capable_women),
+        shift: o.shift_status,
         minutes_to_exhaustion: v
             .map_or(o.minutes_to_exhaustion, |v| v.minutes_to_exhaustion)
             .unwrap_or(f64::INFINITY),
@@ -282,14 +332,43 @@ fn back_key(compression_n: Option<f64>) -> (u8, f64) {
     }
 }
 
+/// The lifting index's class — 0: at most 1 (nearly all healthy workers), 1: at most 3 (an
+/// increased risk for some), 2: above 3 (many workers at elevated risk; Waters et al. 1994,
+/// Applications manual) — and, above 1, the index itself (lower ranks better).
+fn li_key(li: Option<f64>) -> (u8, f64) {
+    match li {
+        Some(x) if x > 3.0 => (2, x),
+        Some(x) if x > 1.0 => (1, x),
+        _ => (0, 0.0),
+    }
+}
+
+/// The population-strength class of NIOSH's 1981 Work practices guide — 0: at least 99 % of men
+/// and 75 % of women strong enough (its action limit), 1: at least 25 % of men (its maximum
+/// permissible limit), 2: fewer.
+fn capable_class(men: f64, women: f64) -> u8 {
+    if men >= 0.99 && women >= 0.75 {
+        0
+    } else if men >= 0.25 {
+        1
+    } else {
+        2
+    }
+}
+
 fn order_keys(a: &Key, b: &Key) -> Ordering {
     b.feasible
         .cmp(&a.feasible)
         .then(a.problems.cmp(&b.problems))
         .then(a.exceeds.cmp(&b.exceeds))
         .then(b.exhausted_at_s.total_cmp(&a.exhausted_at_s))
+        .then(a.li.0.cmp(&b.li.0))
+        .then(a.li.1.total_cmp(&b.li.1))
+        .then(a.postures.cmp(&b.postures))
         .then(a.back.0.cmp(&b.back.0))
         .then(a.back.1.total_cmp(&b.back.1))
+        .then(a.capable.cmp(&b.capable))
+        .then(a.shift.cmp(&b.shift))
         .then(b.minutes_to_exhaustion.total_cmp(&a.minutes_to_exhaustion))
         .then(b.lowest_capacity.total_cmp(&a.lowest_capacity))
         .then(a.u_per_hour.total_cmp(&b.u_per_hour))
@@ -363,32 +442,163 @@ fn findings(layouts: &[LayoutOutcome], robustness: &[Robustness]) -> Vec<String>
     f
 }
 
-/// What choosing the best layout instead of `o` changes, in plain words and numbers.
+/// The first criterion of the ranking on which `best` beats `o`, in words with both figures
+/// (`o`'s first).
+pub fn decisive(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
+    let (a, b) = (key(best, None), key(o, None));
+    let opt_li = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.2}"));
+    if a.feasible != b.feasible || a.problems != b.problems {
+        "whether it can be done as planned".into()
+    } else if a.exceeds != b.exceeds {
+        "no load above strength".into()
+    } else if a.exhausted_at_s != b.exhausted_at_s {
+        "no exhaustion within the task".into()
+    } else if a.li != b.li {
+        format!(
+            "NIOSH's lifting index ({} → {})",
+            opt_li(o.lifting_index),
+            opt_li(best.lifting_index)
+        )
+    } else if a.postures != b.postures {
+        format!(
+            "postures within ISO 11226 / EN 1005-4 ({} → {})",
+            o.posture_status.words(),
+            best.posture_status.words()
+        )
+    } else if a.back != b.back {
+        format!(
+            "L5/S1 compression ({:.0} → {:.0} N)",
+            o.back_compression_max_n.unwrap_or(0.0),
+            best.back_compression_max_n.unwrap_or(0.0)
+        )
+    } else if a.capable != b.capable {
+        format!(
+            "the share strong enough (men {:.0} % → {:.0} %, women {:.0} % → {:.0} %)",
+            100.0 * o.capable_men,
+            100.0 * best.capable_men,
+            100.0 * o.capable_women,
+            100.0 * best.capable_women
+        )
+    } else if a.shift != b.shift {
+        format!(
+            "the shift verdict ({} → {})",
+            o.shift_status.words(),
+            best.shift_status.words()
+        )
+    } else if a.minutes_to_exhaustion != b.minutes_to_exhaustion {
+        "a later exhaustion at this pace".into()
+    } else if a.lowest_capacity != b.lowest_capacity {
+        "a higher lowest capacity".into()
+    } else if a.u_per_hour != b.u_per_hour {
+        "less fatigue per hour".into()
+    } else if a.rula != b.rula {
+        "a lower worst RULA".into()
+    } else {
+        "nothing: the two tie and keep the order given".into()
+    }
+}
+
+/// What choosing the best layout instead of `o` changes, in plain words and numbers: the
+/// deciding criteria first, and every figure that moves the other way says why in the same
+/// sentence.
 fn what_changes(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
-    use super::what_if::{Figures, relative_change};
-    let figures = |x: &LayoutOutcome| Figures {
-        u_per_hour_min: x.u_per_hour_min,
-        lowest_capacity: x.lowest_capacity,
-        back_compression_max_n: x.back_compression_max_n,
-        capable_women: x.capable_women,
-        exhausted: x.exhaustion.is_some(),
-    };
-    let mut parts = figures(o).changes_to(&figures(best));
-    if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
-        parts.insert(
-            1,
-            format!(
-                "the {}' fatigue {}",
-                best.worst_group,
-                relative_change(o.worst_u_min, best.worst_u_min)
-            ),
+    use super::what_if::relative_change;
+    let why = decisive(best, o);
+    let worse = |what: String| format!("{what} (worse here; the ranking puts {why} before it)");
+    let mut parts = Vec::new();
+    if o.lifting_index.is_some() || best.lifting_index.is_some() {
+        let f = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.2}"));
+        let line = format!(
+            "NIOSH lifting index {} → {}",
+            f(o.lifting_index),
+            f(best.lifting_index)
+        );
+        parts.push(
+            if best.lifting_index.unwrap_or(0.0) > o.lifting_index.unwrap_or(0.0) + 1e-9 {
+                worse(line)
+            } else {
+                line
+            },
         );
     }
-    format!("{} instead of {}: {}", best.file, o.file, parts.join("; "))
+    let line = format!(
+        "postures (ISO 11226 / EN 1005-4) {} → {}",
+        o.posture_status.words(),
+        best.posture_status.words()
+    );
+    parts.push(if best.posture_status > o.posture_status {
+        worse(line)
+    } else {
+        line
+    });
+    if let (Some(x), Some(y)) = (o.back_compression_max_n, best.back_compression_max_n) {
+        let line = format!("highest L5/S1 compression {x:.0} → {y:.0} N");
+        parts.push(if y > x + 0.5 { worse(line) } else { line });
+    }
+    let line = format!(
+        "women strong enough {:.0} % → {:.0} %",
+        100.0 * o.capable_women,
+        100.0 * best.capable_women
+    );
+    parts.push(if best.capable_women + 5e-3 < o.capable_women {
+        worse(line)
+    } else {
+        line
+    });
+    let line = format!(
+        "fatigue per hour {:.1} → {:.1} min/h ({})",
+        o.u_per_hour_min,
+        best.u_per_hour_min,
+        relative_change(o.u_per_hour_min, best.u_per_hour_min)
+    );
+    parts.push(if best.u_per_hour_min > o.u_per_hour_min * (1.0 + 1e-3) {
+        worse(line)
+    } else {
+        line
+    });
+    if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
+        parts.push(format!(
+            "the {}' fatigue {}",
+            best.worst_group,
+            relative_change(o.worst_u_min, best.worst_u_min)
+        ));
+    }
+    let line = format!(
+        "lowest capacity at any time {:.0} % ({}) → {:.0} % ({})",
+        100.0 * o.lowest_capacity,
+        o.lowest_capacity_group,
+        100.0 * best.lowest_capacity,
+        best.lowest_capacity_group
+    );
+    parts.push(if best.lowest_capacity + 5e-3 < o.lowest_capacity {
+        worse(line)
+    } else {
+        line
+    });
+    if let (Some(x), Some(y)) = (o.rest_needed_s, best.rest_needed_s) {
+        let line = format!(
+            "rest per cycle that keeps every capacity above the capacity threshold {x:.1} → {y:.1} s"
+        );
+        parts.push(if y > x + 0.05 { worse(line) } else { line });
+    }
+    if best.exhaustion.is_some() && o.exhaustion.is_none() {
+        parts.push(worse(
+            "a muscle group is then exhausted within the task".into(),
+        ));
+    }
+    format!(
+        "{} instead of {} (decided by {why}): {}",
+        best.file,
+        o.file,
+        parts.join("; ")
+    )
 }
 
 /// One layout's verdict in words.
 pub fn verdict(o: &LayoutOutcome) -> String {
+    if !o.feasible && !o.not_determined.is_empty() {
+        return format!("not determined: {}", o.not_determined.join("; "));
+    }
     if !o.feasible {
         return format!("cannot be done: {}", o.problems.join("; "));
     }
@@ -407,8 +617,14 @@ pub fn verdict(o: &LayoutOutcome) -> String {
                 100.0 * o.lowest_capacity,
                 o.lowest_capacity_group
             ),
+            None if o.shift_status == crate::assess::verdict::Status::Acceptable => format!(
+                "sustainable at this pace by every shift criterion; lowest capacity {:.0} % ({})",
+                100.0 * o.lowest_capacity,
+                o.lowest_capacity_group
+            ),
             None => format!(
-                "sustainable at this pace; lowest capacity {:.0} % ({})",
+                "no muscle group gives out at this pace, but {}; lowest capacity {:.0} % ({})",
+                o.shift_verdict,
                 100.0 * o.lowest_capacity,
                 o.lowest_capacity_group
             ),
@@ -605,9 +821,25 @@ pub fn comparison_table(c: &Comparison) -> String {
     row("feasible", &|o| {
         if o.feasible {
             "yes".into()
+        } else if !o.not_determined.is_empty() {
+            format!("NOT DETERMINED: {}", o.not_determined.join("; "))
         } else {
             format!("NO: {}", o.problems.join("; "))
         }
+    });
+    row("shift verdict", &|o| {
+        // the status and the binding criterion; the findings below give the details
+        o.shift_verdict
+            .split(" — ")
+            .next()
+            .unwrap_or_default()
+            .to_string()
+    });
+    row("NIOSH lifting index", &|o| {
+        o.lifting_index.map_or("—".into(), |x| format!("{x:.2}"))
+    });
+    row("postures (ISO 11226 / EN 1005-4)", &|o| {
+        o.posture_status.words().to_string()
     });
     row("exhaustion", &|o| match &o.exhaustion {
         Some(e) => e.describe(),
@@ -673,7 +905,7 @@ pub fn comparison_table(c: &Comparison) -> String {
         format!("{:.1} s", o.current_rest_s)
     });
     row(
-        &format!("rest needed (floor {:.2})", c.capacity_floor),
+        &format!("rest needed (capacity kept above {:.2})", c.capacity_floor),
         &|o| opt_s(o.rest_needed_s),
     );
     let w0 = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);

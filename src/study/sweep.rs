@@ -3,9 +3,10 @@
 //! Each worker gets a body generated from their sex, stature and mass (the task's `robot` file,
 //! if any, is replaced: the sweep is about body size) and strength scaled to their percentile.
 //!
-//! * **Standard population**: 5th, 50th and 95th-percentile men and women, with stature, body
-//!   mass and strength all at that percentile (the "all small" / "all large" design cases; real
-//!   people mix percentiles). Stature: US adults 19–65, Pheasant's *Bodyspace* as tabulated by
+//! * **Standard population**: 5th, 50th and 95th-percentile men and women, with stature and body
+//!   mass at that percentile (the "all small" / "all large" design cases) and median strength:
+//!   strength is sampled independently of body size, as 3DSSPP treats them; the spread of
+//!   strength is what each plan's share of men and women strong enough reports. Stature: US adults 19–65, Pheasant's *Bodyspace* as tabulated by
 //!   the CityU Online Anthropometry pages (men 1640 / 1755 / 1870 mm, SD 71; women 1520 / 1625 /
 //!   1730 mm, SD 64). Body mass: ASSUMPTION, rounded typical adult values (men 60 / 78 / 100 kg,
 //!   women 47 / 62 / 84 kg), not from a checked table.
@@ -16,8 +17,12 @@
 //!   every platform.
 //!
 //! A worker **cannot do the task** when a load exceeds a muscle group's strength, a group is
-//! exhausted within the task, a target is out of reach (hand error > 1 cm), a posture penetrates
-//! an obstacle (clearance < 0) or the worker would lose balance.
+//! exhausted within the task, or a target is out of reach (hand error > 1 cm) and proven so
+//! (farther than the body is long). A target not reached within the body's length, a posture
+//! that penetrates an obstacle (clearance < 0), a loss of balance or a phase whose local solve
+//! did not converge is not proof: such a worker is planned again from the nearest determined
+//! worker's postures (see [`sweep_members`]) and, if that fails too, reported as "the optimiser
+//! could not plan", apart from those who cannot.
 //!
 //! **Share sustaining the shift**: for a sampled population, the share of workers who can do the
 //! whole task, with a 95 % Wilson score interval (Wilson 1927), overall and per sex.
@@ -30,7 +35,7 @@ use crate::assess::assess;
 use crate::body::strength::normal_quantile;
 use crate::body::{Sex, Worker};
 use crate::plan::result::Exhaustion;
-use crate::plan::{PlanError, PlanOptions, Task, TaskError, TaskFile, plan_task_with};
+use crate::plan::{Plan, PlanError, PlanOptions, Planner, Task, TaskError, TaskFile};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
@@ -61,6 +66,12 @@ const WOMEN: SexData = SexData {
     mass_kg: [47.0, 62.0, 84.0],
 };
 const Z95: f64 = 1.644_853_626_951_472_2;
+
+/// The strength percentile of every member of the standard population: strength is not tied
+/// to body size (as in 3DSSPP, where the anthropometry is chosen and strength is reported as
+/// the share of the population strong enough). The strength spread is what each plan's
+/// "% capable" (men and women strong enough for every load) reports.
+pub const STANDARD_STRENGTH_PERCENTILE: f64 = 50.0;
 
 fn sex_data(sex: Sex) -> &'static SexData {
     match sex {
@@ -109,7 +120,7 @@ pub fn standard_population() -> Vec<Member> {
                     sex,
                     stature_m: d.stature_mean_m + z * d.stature_sd_m,
                     mass_kg: d.mass_kg[i],
-                    strength_percentile: *pct,
+                    strength_percentile: STANDARD_STRENGTH_PERCENTILE,
                 },
             });
         }
@@ -202,8 +213,19 @@ pub struct WorkerOutcome {
     pub index: usize,
     pub label: String,
     pub worker: Worker,
+    /// Able: the plan found has no problem (it is the witness).
     pub can_do: bool,
     pub problems: Vec<Problem>,
+    /// Why the plan's problems do not prove that the worker cannot do the task (a target not
+    /// reached within the body's length, a collision, a loss of balance, or a strength or
+    /// exhaustion problem in a plan the optimiser did not finish): this worker is "the optimiser
+    /// could not plan", not "cannot do it". Empty when the worker can, or is proven unable.
+    #[serde(default)]
+    pub could_not_plan: Vec<String>,
+    /// The worker whose postures seeded a second attempt, when the first did not determine the
+    /// answer.
+    #[serde(default)]
+    pub retried_from: Option<String>,
     /// Fatigue index summed over groups \[min\], over the simulated time: the simulation stops at
     /// an exhaustion, so an exhausted worker's U covers only the time until then.
     pub total_u_min: f64,
@@ -216,6 +238,9 @@ pub struct WorkerOutcome {
     pub minutes_to_exhaustion: Option<f64>,
     /// As the plan's `meaning.exhaustion_verdict`, and how long the pace was followed \[min\].
     pub exhaustion_verdict: String,
+    /// The shift verdict's status and headline (the plan's `assessment.verdict`).
+    pub shift_status: crate::assess::verdict::Status,
+    pub shift_verdict: String,
     pub minutes_followed: f64,
     pub exhaustion: Option<Exhaustion>,
     pub rula_max: Option<i32>,
@@ -268,8 +293,13 @@ pub struct Sweep {
     pub adaptive: bool,
     pub capacity_floor: f64,
     pub workers: Vec<WorkerOutcome>,
+    /// Workers proven unable (a problem, with the optimiser's answer determined).
     pub cannot_do: usize,
-    /// Sampled populations: the share who can do the whole task, overall, women, men.
+    /// Workers the optimiser could not plan (even from the nearest successful worker's postures).
+    #[serde(default)]
+    pub could_not_plan: usize,
+    /// Sampled populations: the share who can do the whole task among the workers whose answer
+    /// is determined, overall, women, men.
     pub sustain_all: Option<Share>,
     pub sustain_women: Option<Share>,
     pub sustain_men: Option<Share>,
@@ -385,6 +415,37 @@ pub enum SweepError {
 /// What the sweep says about U.
 pub const NOTE: &str = "U is summed over the simulated time: a worker who is exhausted stops there, so their U can be smaller than a stronger worker's who works the whole task";
 
+/// The task for one member: the file with their body (its `robot` replaced by the generated
+/// worker).
+fn member_task(file: &TaskFile, path: &Path, m: &Member) -> Result<Task, SweepError> {
+    let mut f = file.clone();
+    f.worker = m.worker;
+    f.robot = None;
+    Task::from_task_file(f, path).map_err(|source| SweepError::Task {
+        label: m.label.clone(),
+        source,
+    })
+}
+
+/// Plans the task for one member, the first plan's search also starting from `hint` (one
+/// posture per phase) when given.
+fn plan_member(
+    task: &Task,
+    m: &Member,
+    opts: PlanOptions,
+    hint: Option<&[Vec<f64>]>,
+) -> Result<Plan, SweepError> {
+    let err = |source| SweepError::Plan {
+        label: m.label.clone(),
+        source,
+    };
+    let mut planner = Planner::new(task, opts.sqp).map_err(err)?;
+    if let Some(h) = hint {
+        planner.hint(h).map_err(err)?;
+    }
+    planner.plan(opts).map_err(err)
+}
+
 /// Plans and assesses the task for one member.
 pub fn one(
     file: &TaskFile,
@@ -394,18 +455,77 @@ pub fn one(
     opts: PlanOptions,
     floor: f64,
 ) -> Result<WorkerOutcome, SweepError> {
-    let mut f = file.clone();
-    f.worker = m.worker;
-    f.robot = None;
-    let task = Task::from_task_file(f, path).map_err(|source| SweepError::Task {
-        label: m.label.clone(),
-        source,
-    })?;
-    let plan = plan_task_with(&task, opts).map_err(|source| SweepError::Plan {
-        label: m.label.clone(),
-        source,
-    })?;
-    let a = assess(&task, &plan, floor);
+    let task = member_task(file, path, m)?;
+    let plan = plan_member(&task, m, opts, None)?;
+    Ok(outcome_of(&task, &plan, index, m, floor))
+}
+
+/// [`one`] seeded with the postures of `from`'s plan (re-planned here): the second attempt for a
+/// worker the optimiser could not plan.
+fn retry(
+    file: &TaskFile,
+    path: &Path,
+    index: usize,
+    m: &Member,
+    from: &Member,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<WorkerOutcome, SweepError> {
+    let donor_task = member_task(file, path, from)?;
+    let donor = plan_member(&donor_task, from, opts, None)?;
+    let hint: Vec<Vec<f64>> = donor
+        .summary
+        .phases
+        .iter()
+        .map(|p| p.q_rad.clone())
+        .collect();
+    let task = member_task(file, path, m)?;
+    let plan = plan_member(&task, m, opts, Some(&hint))?;
+    let mut o = outcome_of(&task, &plan, index, m, floor);
+    o.retried_from = Some(from.label.clone());
+    Ok(o)
+}
+
+/// Why `plan`'s problems do not prove that the worker cannot do the task (empty when they do,
+/// or when there are none: a plan without problems is a witness that the worker can). Proof is
+/// a target farther than the body is long, or a load above strength or an exhaustion in a plan
+/// whose every phase the optimiser finished; a target not reached within the body's length, a
+/// collision or a loss of balance is never proof.
+fn could_not_plan(plan: &Plan, problems: &[Problem]) -> Vec<String> {
+    if problems.is_empty() {
+        return Vec::new();
+    }
+    let unfinished: Vec<String> = plan
+        .summary
+        .phases
+        .iter()
+        .filter(|p| !p.solve.determined())
+        .map(|p| {
+            format!(
+                "the optimiser did not converge on '{}' (optimality residual {:.1e})",
+                p.phase, p.kkt_residual
+            )
+        })
+        .collect();
+    let proven = |p: &Problem| match p {
+        Problem::OutOfReach { proven, .. } => *proven,
+        Problem::ExceedsStrength { .. } | Problem::Exhaustion { .. } => unfinished.is_empty(),
+        Problem::Collision { .. } | Problem::OffBalance { .. } => false,
+    };
+    if problems.iter().all(proven) {
+        return Vec::new();
+    }
+    problems
+        .iter()
+        .filter(|p| !proven(p))
+        .map(|p| format!("not proven: {}", problem_text(p)))
+        .chain(unfinished.iter().cloned())
+        .collect()
+}
+
+fn outcome_of(task: &Task, plan: &Plan, index: usize, m: &Member, floor: f64) -> WorkerOutcome {
+    let task = task;
+    let a = assess(task, plan, floor);
     let s = &plan.summary;
     let mut problems = Vec::new();
     if let Some(e) = &s.exhaustion {
@@ -453,12 +573,14 @@ pub fn one(
             .map(|h| h.group.clone())
             .unwrap_or_else(|| id.to_string())
     };
-    Ok(WorkerOutcome {
+    WorkerOutcome {
         index,
         label: m.label.clone(),
         worker: m.worker,
         can_do: problems.is_empty(),
+        could_not_plan: could_not_plan(plan, &problems),
         problems,
+        retried_from: None,
         total_u_min: s.total_u,
         simulated_s: s.duration_s,
         worst_group: group(&s.worst_half_joint),
@@ -466,6 +588,8 @@ pub fn one(
         lowest_capacity_group: group(&s.lowest_capacity_half_joint),
         minutes_to_exhaustion: a.meaning.minutes_to_exhaustion,
         exhaustion_verdict: a.meaning.exhaustion_verdict.to_string(),
+        shift_status: a.verdict.status,
+        shift_verdict: a.verdict.headline.clone(),
         minutes_followed: a.meaning.minutes_followed,
         exhaustion: s.exhaustion.clone(),
         rula_max: a.rula_max,
@@ -473,7 +597,7 @@ pub fn one(
         back_compression_max_n: a.back_compression_max_n,
         rest_needed_s: a.rest.model.rest_s_per_cycle,
         exhausted_in_variants: a.uncertainty.as_ref().map(|u| u.exhausted_in),
-    })
+    }
 }
 
 impl Sweep {
@@ -492,14 +616,26 @@ impl Sweep {
                 .iter()
                 .filter(|w| sex.is_none_or(|s| w.worker.sex == s))
                 .collect();
-            wilson(of.iter().filter(|w| w.can_do).count(), of.len())
+            let determined: Vec<&&WorkerOutcome> =
+                of.iter().filter(|w| w.could_not_plan.is_empty()).collect();
+            wilson(
+                determined.iter().filter(|w| w.can_do).count(),
+                determined.len(),
+            )
         };
         Sweep {
             task: task.to_string(),
             population: population.to_string(),
             adaptive,
             capacity_floor: floor,
-            cannot_do: workers.iter().filter(|w| !w.can_do).count(),
+            cannot_do: workers
+                .iter()
+                .filter(|w| !w.can_do && w.could_not_plan.is_empty())
+                .count(),
+            could_not_plan: workers
+                .iter()
+                .filter(|w| !w.could_not_plan.is_empty())
+                .count(),
             sustain_all: sampled.then(|| share(None)),
             sustain_women: sampled.then(|| share(Some(Sex::Female))),
             sustain_men: sampled.then(|| share(Some(Sex::Male))),
@@ -512,6 +648,11 @@ impl Sweep {
 /// Plans `file` (read from `path`) for the members of `shard`, in parallel; `on_done` is called
 /// once per finished worker (from any thread) with its outcome, e.g. to stream it or advance a
 /// progress bar.
+///
+/// A worker the optimiser could not plan (see [`WorkerOutcome::could_not_plan`]) is planned a
+/// second time, its search also starting from the postures of the nearest worker of the shard
+/// whose plan was determined (same sex first, then the closest stature, then mass); the second
+/// attempt is kept when it is determined, else the first, marked with the worker tried from.
 pub fn sweep_members(
     file: &TaskFile,
     path: &Path,
@@ -521,15 +662,76 @@ pub fn sweep_members(
     floor: f64,
     on_done: &(dyn Fn(&WorkerOutcome) + Sync),
 ) -> Result<Vec<WorkerOutcome>, SweepError> {
-    shard
+    let first: Vec<WorkerOutcome> = shard
         .indices(members.len())
         .par_iter()
         .map(|&i| {
             let r = one(file, path, i, &members[i], opts, floor)?;
+            if r.could_not_plan.is_empty() {
+                on_done(&r);
+            }
+            Ok(r)
+        })
+        .collect::<Result<_, SweepError>>()?;
+    let determined: Vec<usize> = first
+        .iter()
+        .filter(|w| w.could_not_plan.is_empty())
+        .map(|w| w.index)
+        .collect();
+    first
+        .into_par_iter()
+        .map(|w| {
+            if w.could_not_plan.is_empty() {
+                return Ok(w);
+            }
+            let r = match nearest(members, w.index, &determined) {
+                Some(d) => {
+                    let second = retry(
+                        file,
+                        path,
+                        w.index,
+                        &members[w.index],
+                        &members[d],
+                        opts,
+                        floor,
+                    )?;
+                    if second.could_not_plan.is_empty() {
+                        second
+                    } else {
+                        WorkerOutcome {
+                            retried_from: second.retried_from,
+                            ..w
+                        }
+                    }
+                }
+                None => w,
+            };
             on_done(&r);
             Ok(r)
         })
         .collect()
+}
+
+/// The member among `candidates` nearest to member `i`: same sex first, then the smallest
+/// stature difference, then mass difference, then index.
+fn nearest(members: &[Member], i: usize, candidates: &[usize]) -> Option<usize> {
+    let w = &members[i].worker;
+    candidates.iter().copied().min_by(|&a, &b| {
+        let key = |j: usize| {
+            let o = &members[j].worker;
+            (
+                o.sex != w.sex,
+                (o.stature_m - w.stature_m).abs(),
+                (o.mass_kg - w.mass_kg).abs(),
+                j,
+            )
+        };
+        let (ka, kb) = (key(a), key(b));
+        ka.0.cmp(&kb.0)
+            .then(ka.1.total_cmp(&kb.1))
+            .then(ka.2.total_cmp(&kb.2))
+            .then(ka.3.cmp(&kb.3))
+    })
 }
 
 /// Merges shard results (name, shard) into one sweep.
@@ -705,7 +907,16 @@ pub fn sweep_table(s: &Sweep) -> String {
             w.lowest_capacity,
             w.rest_needed_s
                 .map_or("none helps".into(), |r| format!("{r:.1} s")),
-            if w.problems.is_empty() {
+            if !w.could_not_plan.is_empty() {
+                format!(
+                    "THE OPTIMISER COULD NOT PLAN{}: {}",
+                    w.retried_from
+                        .as_ref()
+                        .map(|f| format!(" (also tried from {f}'s postures)"))
+                        .unwrap_or_default(),
+                    w.could_not_plan.join("; ")
+                )
+            } else if w.problems.is_empty() {
                 if w.lowest_capacity < s.capacity_floor || w.rest_needed_s.is_none() {
                     format!(
                         "can do it only by changing posture (capacity falls to {:.0} %)",
@@ -728,7 +939,10 @@ pub fn sweep_table(s: &Sweep) -> String {
                                 w.minutes_followed
                             )
                         ),
-                        None => "can do it (sustainable)".to_string(),
+                        None if w.shift_status == crate::assess::verdict::Status::Acceptable => {
+                            "can do it (sustainable by every shift criterion)".to_string()
+                        }
+                        None => format!("can do it (shift verdict: {})", w.shift_verdict),
                     }
                 }
             } else {
@@ -745,9 +959,17 @@ pub fn sweep_table(s: &Sweep) -> String {
     }
     let _ = writeln!(
         o,
-        "\n{} of {} workers cannot do the task",
+        "\n{} of {} workers cannot do the task{}",
         s.cannot_do,
-        s.workers.len()
+        s.workers.len(),
+        if s.could_not_plan > 0 {
+            format!(
+                "; the optimiser could not plan {} (not counted as unable)",
+                s.could_not_plan
+            )
+        } else {
+            String::new()
+        }
     );
     for (name, sh) in [
         ("all", &s.sustain_all),

@@ -362,3 +362,34 @@ fn other_bodies_are_refused() {
     let e = BodyAngles::measure(&m, &mut data, &q, None).unwrap_err();
     assert!(e.to_string().contains("pelvis"), "{e}");
 }
+
+/// ISO 11226's angles are against the vertical. A trunk flexed 40° forward turns the hanging
+/// arm 40° back (it stays along the trunk), so an upper arm flexed 50° against that trunk points
+/// 10° forward of straight down and one flexed 130° points 90° from it; the head with the neck
+/// flexed 20° on a trunk flexed 30° is inclined 50° (their up axes add); standing upright both
+/// are 0; an arm raised 120° with the trunk upright is elevated 120°.
+#[test]
+fn iso_angles_are_against_the_vertical() {
+    let a = angles(&[]);
+    close(a.right.upper_arm_elevation_deg, 0.0, "arm hanging");
+    close(a.head_inclination_deg, 0.0, "head upright");
+    let a = angles(&[("r_shoulder_flexion", 50.0), ("lumbar_flexion", 40.0)]);
+    close(
+        a.right.upper_arm_elevation_deg,
+        10.0,
+        "arm against the vertical",
+    );
+    close(
+        a.left.upper_arm_elevation_deg,
+        40.0,
+        "hanging arm follows the trunk",
+    );
+    let a = angles(&[("r_shoulder_flexion", 130.0), ("lumbar_flexion", 40.0)]);
+    close(a.right.upper_arm_elevation_deg, 90.0, "arm horizontal");
+    let a = angles(&[("neck_flexion", 20.0), ("lumbar_flexion", 30.0)]);
+    close(a.head_inclination_deg, 50.0, "head inclination");
+    let a = angles(&[("neck_flexion", -25.0)]);
+    close(a.head_inclination_deg, -25.0, "head tilted back");
+    let a = angles(&[("l_shoulder_flexion", 120.0)]);
+    close(a.left.upper_arm_elevation_deg, 120.0, "arm raised overhead");
+}

@@ -544,8 +544,9 @@ fn streaming_answers_each_sample_before_the_next_arrives() {
     assert!(child.wait().unwrap().success());
 }
 
-/// Seconds apart that are not binary fractions, two phases and a rest, re-planned as capacity
-/// falls: the recording has several postures and irregular steps.
+/// Seconds apart that are not binary fractions, two phases and a rest (re-planned as capacity
+/// falls where a re-plan lowers the fatigue): the recording has several postures and irregular
+/// steps.
 const PLAN_TASK: &str = "name: two holds
 worker: {sex: male, stature_m: 1.755, mass_kg: 78.0}
 phases:
@@ -586,8 +587,15 @@ fn a_plan_written_as_a_recording_evaluates_to_the_plans_own_fatigue() {
         s["exhaustion"].is_null(),
         "the plan must run its course for the comparison"
     );
+    // the two phases' postures and the rest posture at least
+    let distinct: std::collections::BTreeSet<u64> = p["steps"]["posture"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_u64().unwrap())
+        .collect();
     assert!(
-        s["replans"].as_u64().unwrap() > 1,
+        distinct.len() >= 3,
         "the recording should hold several postures"
     );
     assert_eq!(p["half_joint_ids"], e["half_joint_ids"]);

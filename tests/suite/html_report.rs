@@ -144,6 +144,8 @@ fn outcome(
         },
         can_do: problems.is_empty(),
         problems,
+        could_not_plan: Vec::new(),
+        retried_from: None,
         total_u_min: 12.5,
         simulated_s: 3600.0,
         worst_group: "right shoulder flexors".into(),
@@ -151,6 +153,9 @@ fn outcome(
         lowest_capacity_group: "right shoulder flexors".into(),
         minutes_to_exhaustion: if index == 0 { None } else { Some(95.0) },
         exhaustion_verdict: if index == 0 { "never" } else { "gives_out" }.into(),
+        shift_status: posture_opt::assess::verdict::Status::Acceptable,
+        shift_verdict:
+            "acceptable: this pace can be kept up indefinitely by every criterion checked".into(),
         minutes_followed: if index == 0 { 7.0 * 24.0 * 60.0 } else { 95.0 },
         exhaustion,
         rula_max: Some(5),

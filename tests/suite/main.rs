@@ -26,6 +26,7 @@ mod plan_reference;
 mod plan_truth;
 mod reba;
 mod rula;
+mod shift_verdict;
 mod statistics;
 mod task_files;
 mod three_compartment;

@@ -683,6 +683,7 @@ fn arm(flexion: f64, elbow: f64) -> ArmAngles {
         wrist_deviation_deg: 0.0,
         wrist_twist_fraction: 0.0,
         forearm_pronation_deg: 0.0,
+        upper_arm_elevation_deg: flexion.abs(),
         hand_across_midline: false,
         hand_out_to_side: false,
     }
@@ -694,6 +695,7 @@ fn body(right: ArmAngles, left: ArmAngles) -> BodyAngles {
         trunk_side_bend_deg: 0.0,
         trunk_twist_deg: 0.0,
         neck_flexion_deg: 0.0,
+        head_inclination_deg: 0.0,
         neck_side_bend_deg: 0.0,
         neck_twist_deg: 0.0,
         right,

@@ -124,10 +124,12 @@ fn other_measures(c: &Comparison) -> Vec<Finding> {
             out.push(Finding::new(
                 Level::Warn,
                 format!(
-                    "The ranking weighs fatigue first; by other measures {} is better than {}: {}.",
+                    "By other measures {} is better than {}: {}; {} ranks first on {}.",
                     esc(&o.file),
                     esc(&best.file),
-                    better.join("; ")
+                    better.join("; "),
+                    esc(&best.file),
+                    esc(&crate::study::compare::decisive(best, o))
                 ),
             ));
         }
@@ -142,6 +144,8 @@ fn ranking_tables(c: &Comparison) -> String {
             "rank",
             "layout",
             "verdict",
+            "NIOSH lifting index",
+            "postures (ISO 11226 / EN 1005-4)",
             "lowest capacity at any time",
             "time to exhaustion at this pace",
             "endurance used per hold",
@@ -155,6 +159,8 @@ fn ranking_tables(c: &Comparison) -> String {
                 o.rank.to_string(),
                 format!("<b>{}</b><br><small>{}</small>", esc(&o.task), esc(&o.file)),
                 esc(&verdict(o)),
+                o.lifting_index.map_or("—".into(), |x| num(x, 2)),
+                esc(o.posture_status.words()),
                 format!(
                     "{} ({}, at {})",
                     pct(o.lowest_capacity),
@@ -474,7 +480,7 @@ pub fn body(c: &Comparison, tasks: &[&Task], planned: &[Planned]) -> Result<Stri
     let mut o = String::new();
     let _ = write!(
         o,
-        "<header><h1>Layout comparison</h1><p class=\"meta\">{} layouts · {} plans{} · capacity floor {} · posture-opt {}</p></header>",
+        "<header><h1>Layout comparison</h1><p class=\"meta\">{} layouts · {} plans{} · capacity kept above {} · posture-opt {}</p></header>",
         c.layouts.len(),
         if c.adaptive {
             "fatigue-adaptive"

@@ -5,6 +5,7 @@
 use super::analysis::{GroupCourse, PhaseStrain, WorstWhy};
 use super::fmt::{Finding, Level, capitalise, dur, esc, mm, num, pct, unit};
 use crate::assess::Assessment;
+use crate::assess::verdict::Status;
 use crate::plan::result::{Exhaustion, PhaseSummary};
 use crate::plan::{Plan, Task};
 
@@ -46,7 +47,7 @@ pub fn exhaustion_html(e: &Exhaustion) -> String {
 }
 
 /// The verdict: can the worker do it, and for how long.
-pub fn verdict(task: &Task, plan: &Plan, a: &Assessment) -> Finding {
+pub fn verdict(plan: &Plan, a: &Assessment) -> Finding {
     let s = &plan.summary;
     // the plan's problems (every phase's and the rest posture's), as the text verdict has them
     let problems: Vec<String> = plan.problems().iter().map(|x| esc(x)).collect();
@@ -66,49 +67,49 @@ pub fn verdict(task: &Task, plan: &Plan, a: &Assessment) -> Finding {
         }
         return Finding::new(Level::Bad, t);
     }
-    if !problems.is_empty() {
-        return Finding::new(
-            Level::Bad,
-            format!("Cannot be done as planned: {}.", problems.join("; ")),
-        );
-    }
-    match (m.minutes_to_exhaustion, &m.first_to_give_out) {
-        (Some(min), Some(g)) => {
-            let t = 60.0 * min;
-            let level = if t <= task.duration_s() {
-                Level::Bad
-            } else {
-                Level::Warn
-            };
-            Finding::new(
-                level,
-                format!(
-                    "As far as fatigue goes, this worker can do the task, but not keep up this pace indefinitely: the {} give out after {} of work at this pace ({} the task’s {}). {left}",
-                    esc(g),
-                    dur(t),
-                    if task.duration_s() > 0.0 {
-                        format!("{}×", num(t / task.duration_s(), 1))
-                    } else {
-                        "—".into()
-                    },
-                    dur(task.duration_s())
-                ),
+    let v = &a.verdict;
+    let level = match v.status {
+        Status::Acceptable => Level::Ok,
+        Status::Caution | Status::NotDetermined => Level::Warn,
+        Status::Exceeded => Level::Bad,
+    };
+    let head = capitalise(&esc(&v.headline));
+    let fatigue = if v.binding == Some("fatigue_model") {
+        String::new()
+    } else {
+        format!(" The fatigue model: {}.", esc(&m.words))
+    };
+    Finding::new(level, format!("{head}.{fatigue} {left}"))
+}
+
+/// The shift criteria one by one, as the verdict weighed them.
+pub fn criteria_finding(a: &Assessment) -> Finding {
+    let items: Vec<String> = a
+        .verdict
+        .criteria
+        .iter()
+        .map(|c| {
+            format!(
+                "<li><b>{}</b> ({}): {} <small>[{}]</small></li>",
+                esc(c.name),
+                c.status.words(),
+                esc(&c.words),
+                esc(c.source)
             )
-        }
-        _ if m.exhaustion_verdict == "not_determined" => Finding::new(
-            Level::Warn,
-            format!(
-                "As far as fatigue goes, this worker can do the task; no muscle group gave out in the {} this pace was followed, but the capacities had not settled yet, so whether it can be kept up indefinitely is not determined. {left}",
-                dur(60.0 * m.minutes_followed)
-            ),
+        })
+        .collect();
+    let level = match a.verdict.status {
+        Status::Acceptable => Level::Ok,
+        Status::Caution | Status::NotDetermined => Level::Warn,
+        Status::Exceeded => Level::Bad,
+    };
+    Finding::new(
+        level,
+        format!(
+            "Shift criteria (the verdict is the worst of them; “indefinitely” only when all are acceptable):<ul>{}</ul>",
+            items.join("")
         ),
-        _ => Finding::new(
-            Level::Ok,
-            format!(
-                "As far as fatigue goes, this worker can do the task and keep up this pace indefinitely: every muscle group settles above the loads it holds. {left}"
-            ),
-        ),
-    }
+    )
 }
 
 /// The findings under the verdict.

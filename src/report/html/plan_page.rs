@@ -1009,8 +1009,9 @@ pub fn body(
         dur(task.cycle_s()),
         env!("CARGO_PKG_VERSION")
     );
-    let mut v = findings::verdict(task, plan, a);
+    let mut v = findings::verdict(plan, a);
     let mut f: Vec<Finding> = findings::findings(task, plan, a, &strain, &courses, worst);
+    f.insert(0, findings::criteria_finding(a));
     if let Some(w) = what_if {
         f.insert(1.min(f.len()), findings::what_if_finding(w));
     }

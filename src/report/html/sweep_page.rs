@@ -3,11 +3,25 @@
 
 use super::fmt::{Finding, Level, Table, dur, esc, findings_list, num, opt, pct, unit};
 use super::svg::{Scale, Svg, nice_ticks, tick_decimals};
+use crate::assess::verdict::Status;
 use crate::body::Sex;
 use crate::study::sweep::{Problem, Share, Sweep, WorkerOutcome, problem_text};
 use std::fmt::Write;
 
 fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
+    if !w.could_not_plan.is_empty() {
+        return (
+            Level::Warn,
+            format!(
+                "<b>the optimiser could not plan</b>{}: {}",
+                w.retried_from
+                    .as_ref()
+                    .map(|f| format!(" (also tried from {}’s postures)", esc(f)))
+                    .unwrap_or_default(),
+                esc(&w.could_not_plan.join("; "))
+            ),
+        );
+    }
     if w.can_do && w.problems.is_empty() {
         if w.lowest_capacity < floor || w.rest_needed_s.is_none() {
             return (
@@ -42,7 +56,14 @@ fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
                     )
                 ),
             ),
-            None => (Level::Ok, "can do it, indefinitely at this pace".into()),
+            None if w.shift_status == Status::Acceptable => (
+                Level::Ok,
+                "can do it, indefinitely at this pace (every shift criterion acceptable)".into(),
+            ),
+            None => (
+                Level::Warn,
+                format!("can do it; shift verdict: {}", esc(&w.shift_verdict)),
+            ),
         }
     } else {
         let why: Vec<String> = w.problems.iter().map(|p| esc(&problem_text(p))).collect();
@@ -291,10 +312,18 @@ pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
     };
     let _ = write!(
         o,
-        "<div class=\"verdict {}\">{} of {} workers cannot do the task{}.</div>",
+        "<div class=\"verdict {}\">{} of {} workers cannot do the task{}{}.</div>",
         lv.class(),
         s.cannot_do,
         n,
+        if s.could_not_plan > 0 {
+            format!(
+                "; the optimiser could not plan {} (not counted as unable: see below)",
+                s.could_not_plan
+            )
+        } else {
+            String::new()
+        },
         s.sustain_all
             .as_ref()
             .map(|x| format!(
@@ -336,7 +365,7 @@ pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
     if !can.is_empty() {
         let tiring = can
             .iter()
-            .filter(|w| w.minutes_to_exhaustion.is_some())
+            .filter(|w| w.minutes_to_exhaustion.is_some() || w.shift_status != Status::Acceptable)
             .count();
         f.push(Finding::new(
             if tiring > 0 { Level::Warn } else { Level::Ok },
@@ -345,7 +374,7 @@ pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
                 can.len(),
                 if can.len() == 1 { "" } else { "s" },
                 if tiring > 0 {
-                    format!("; for {tiring} of them the pace could not be kept up indefinitely")
+                    format!("; for {tiring} of them the pace could not be kept up indefinitely (a group gives out, or a shift criterion is not acceptable)")
                 } else {
                     ", at a pace they could keep up indefinitely".into()
                 }

@@ -328,6 +328,8 @@ pub fn scan_text(s: &str) -> Vec<String> {
 /// Keys whose value may be null (Rust `Option` fields and schema defaults); any other null in a
 /// JSON output is a number that was NaN or infinite (serde_json writes those as null).
 pub const NULLABLE_KEYS: &[&str] = &[
+    "binding",
+    "retried_from",
     "angles",
     "back_compression_max_n",
     "back_compression_phase",

@@ -1,0 +1,821 @@
+//! The shift verdict: whether the planned pace can be kept up over the shift, judged by several
+//! independent criteria, and which of them binds.
+//!
+//! The fatigue model alone is not enough to call a pace sustainable: a muscle whose modelled
+//! capacity settles four points above a 35 %MVC overhead hold is, by every field criterion, not
+//! working acceptably. The verdict therefore takes the worst of:
+//!
+//! 1. **Fatigue model** (Ma et al. 2009 with recovery, [`super::meaning`]): a group giving out
+//!    within the task exceeds; giving out later if the pace were kept up, or capacities that had
+//!    not settled when the replay stopped, is a caution; settling above every load is acceptable.
+//! 2. **Jonsson's load levels** (B. Jonsson, Measurement and evaluation of local muscular strain
+//!    in the shoulder during constrained work, J Hum Ergol 11:73–88, 1982): over the work cycle,
+//!    the static load level (the 10th percentile of the load's time distribution) should not
+//!    exceed 2 %MVC and must not exceed 5 %MVC; the mean load level should not exceed 10 %MVC and
+//!    must not exceed 14 %MVC; the peak level (90th percentile) should not exceed 50 %MVC and
+//!    must not exceed 70 %MVC. Between the two figures is a caution, above the second exceeded.
+//!    Applied to the shoulder, elbow, wrist/grip and neck groups ([`JONSSON_REGIONS`]), where
+//!    Jonsson and the studies after him measured; ASSUMPTION: a group's joint torque as a share
+//!    of its strength stands for its muscles' %MVC (Jonsson used EMG), and the legs' and trunk's
+//!    small static loads in standing, for which the limits were not derived, are not judged.
+//! 3. **ISO 11226:2000** (Ergonomics — evaluation of static working postures; EN 1005-4:2005
+//!    gives the same zones for static postures of the trunk and upper arm): for every phase
+//!    held longer than 4 s (the standards' static posture), trunk inclination 0–20° is
+//!    acceptable, 20–60° only for its maximum acceptable holding time, beyond 60° or leaning
+//!    back not acceptable; trunk lateral bending or axial rotation beyond 10° not acceptable;
+//!    upper-arm elevation 0–20° acceptable, 20–60° only for its holding time, beyond 60° not
+//!    acceptable (no arm support is modelled); head inclination beyond 85° or backward not
+//!    acceptable, neck flexion (head against trunk) beyond 25° not acceptable, head inclination
+//!    25–85° a caution (its holding-time curve is not applied). The holding times are straight
+//!    lines between the end points [`ISO_TRUNK_HOLD_MIN`] and [`ISO_ARM_HOLD_MIN`], read from the
+//!    standard's figures as secondary sources reproduce them; the original figures were not
+//!    available to check here. Backward lean and head extension are judged beyond
+//!    [`ISO_BACKWARD_TOLERANCE_DEG`] (ASSUMPTION: less is not visible to an observer).
+//! 4. **EN 1005-4** (postures and movements in relation to machinery) for the phases held 4 s or
+//!    less (postures in movement): trunk lateral bending or axial rotation beyond 10°, or an
+//!    upper arm raised beyond 60° against the vertical, is not acceptable at 2 or more times a
+//!    minute and conditionally acceptable (a caution) less often; an upper arm raised 20–60° at 2
+//!    or more times a minute is conditionally acceptable. A phase's frequency is how often its
+//!    work (the same targets and load) comes round per minute. The zones are as secondary
+//!    summaries of the standard give them (the standard's text was not available here).
+//! 6. **NIOSH's low-back limits**: the highest L5/S1 compression within the action limit of
+//!    3400 N is acceptable, up to the maximum permissible limit of 6400 N a caution, above it
+//!    exceeded (NIOSH Work practices guide for manual lifting, 1981, as used by Waters et al.
+//!    1993); a declared lift's lifting index (or the composite index) at most 1 acceptable, up to
+//!    3 a caution, above 3 exceeded (Waters et al. 1994, Applications manual: LI > 1 puts some
+//!    workers at increased risk, LI > 3 many).
+//! 5. **Rohmert (1973)**: a hold above 100 %MVC, or longer than Rohmert's endurance time at its
+//!    load, or a cycle whose rest is shorter than Rohmert's rest allowance ([`super::rest`]),
+//!    exceeds; holds above 15 %MVC covered by enough rest are a caution (Rohmert's curve: only
+//!    loads below about 15 %MVC can be held without a rest allowance); none above 15 % is
+//!    acceptable.
+//!
+//! "Indefinitely" is said only when every criterion is acceptable. The solver's status comes
+//! first. A target farther than the body is long, or inside an obstacle, is a proven "cannot be
+//! done". Targets, clearances or balance the optimiser did not achieve without such proof make
+//! the verdict "not determined", with the reason. A feasible plan is a witness: a phase whose
+//! local solve did not converge (nor stall at a numerically stationary, feasible point:
+//! [`crate::plan::sqp::SqpOutcome::determined`]) leaves the verdict "acceptable" when the plan
+//! passes every criterion (a finished plan can only do better), and makes it "not determined"
+//! when the plan fails one (a finished plan may pass).
+
+use super::lifting::Lifting;
+use super::meaning::{Meaning, last_cycle_loads};
+use super::phase::PhaseAssessment;
+use super::rest::{RestAdvice, rohmert_endurance_min};
+use crate::plan::sqp::Stop;
+use crate::plan::{Plan, Task};
+use serde::Serialize;
+
+/// How a criterion judges the plan; ordered from best to worst.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    Acceptable,
+    Caution,
+    Exceeded,
+    NotDetermined,
+}
+
+impl Status {
+    pub fn words(self) -> &'static str {
+        match self {
+            Status::Acceptable => "acceptable",
+            Status::Caution => "caution",
+            Status::Exceeded => "exceeded",
+            Status::NotDetermined => "not determined",
+        }
+    }
+}
+
+/// One criterion's judgement.
+#[derive(Debug, Clone, Serialize)]
+pub struct Criterion {
+    /// "fatigue_model", "jonsson_static", "jonsson_mean", "jonsson_peak", "iso_11226",
+    /// "en_1005_4", "rohmert", "niosh_low_back".
+    pub id: &'static str,
+    /// The criterion in words.
+    pub name: &'static str,
+    pub status: Status,
+    /// What it found, with its figures.
+    pub words: String,
+    pub source: &'static str,
+}
+
+/// The shift verdict.
+#[derive(Debug, Clone, Serialize)]
+pub struct ShiftVerdict {
+    pub status: Status,
+    /// The criterion that decides the verdict (the first, in the order listed, of the worst
+    /// status); `None` when the solver's status or a proven impossibility decides it.
+    pub binding: Option<&'static str>,
+    /// The verdict in one sentence, naming the binding criterion.
+    pub headline: String,
+    /// Why the verdict is not determined (the optimiser's failures), when it is not.
+    pub not_determined: Vec<String>,
+    pub criteria: Vec<Criterion>,
+}
+
+/// The regions whose groups Jonsson's load levels judge.
+pub const JONSSON_REGIONS: [&str; 4] = ["shoulder", "elbow", "grip", "neck"];
+/// Jonsson (1982): (should not exceed, must not exceed) as fractions of MVC.
+pub const JONSSON_STATIC: (f64, f64) = (0.02, 0.05);
+pub const JONSSON_MEAN: (f64, f64) = (0.10, 0.14);
+pub const JONSSON_PEAK: (f64, f64) = (0.50, 0.70);
+/// ISO 11226 / EN 1005-4: a posture held longer than this is static \[s\].
+pub const ISO_STATIC_S: f64 = 4.0;
+/// ISO 11226 Figure 2 (trunk inclination): maximum acceptable holding time \[min\] at 20° and
+/// at 60°, linear between.
+pub const ISO_TRUNK_HOLD_MIN: (f64, f64) = (4.0, 1.0);
+/// ISO 11226 Figure 3 (upper-arm elevation): maximum acceptable holding time \[min\] at 20° and
+/// at 60°, linear between.
+pub const ISO_ARM_HOLD_MIN: (f64, f64) = (3.0, 1.0);
+/// Backward trunk lean and head extension smaller than this are not judged (ASSUMPTION).
+pub const ISO_BACKWARD_TOLERANCE_DEG: f64 = 5.0;
+
+const JONSSON_SOURCE: &str = "Jonsson B. (1982) J Hum Ergol 11:73-88";
+const ISO_SOURCE: &str = "ISO 11226:2000; EN 1005-4:2005";
+const EN_SOURCE: &str = "EN 1005-4:2005+A1:2008 (postures in movement)";
+/// EN 1005-4: a movement repeated this often or more per minute is "high frequency".
+pub const EN_HIGH_FREQUENCY_PER_MIN: f64 = 2.0;
+const NIOSH_SOURCE: &str = "NIOSH (1981) Work practices guide for manual lifting (3400 / 6400 N); Waters et al. (1993, 1994) lifting index";
+const ROHMERT_SOURCE: &str = "Rohmert W. (1973) Applied Ergonomics 4(3):158-162";
+const MODEL_SOURCE: &str = "Ma et al. (2009) with recovery";
+
+/// The maximum acceptable holding time \[s\] of a zone whose holding time falls linearly from
+/// `hold_min.0` at 20° to `hold_min.1` at 60°.
+pub fn iso_holding_time_s(angle_deg: f64, hold_min: (f64, f64)) -> f64 {
+    let x = ((angle_deg - 20.0) / 40.0).clamp(0.0, 1.0);
+    60.0 * (hold_min.0 + x * (hold_min.1 - hold_min.0))
+}
+
+/// A time distribution's `p`-quantile: the smallest level at or below which the load stays for
+/// at least the share `p` of the time. `levels`: (load, duration) pairs.
+pub fn time_quantile(levels: &[(f64, f64)], p: f64) -> f64 {
+    let mut v: Vec<(f64, f64)> = levels.iter().copied().filter(|l| l.1 > 0.0).collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = v.iter().map(|l| l.1).sum();
+    let mut acc = 0.0;
+    for (f, d) in &v {
+        acc += d;
+        if acc >= p * total * (1.0 - 1e-12) {
+            return *f;
+        }
+    }
+    v.last().map_or(0.0, |l| l.0)
+}
+
+/// The time-weighted mean of (load, duration) pairs.
+pub fn time_mean(levels: &[(f64, f64)]) -> f64 {
+    let total: f64 = levels.iter().map(|l| l.1.max(0.0)).sum();
+    if total <= 0.0 {
+        return 0.0;
+    }
+    levels.iter().map(|l| l.0 * l.1.max(0.0)).sum::<f64>() / total
+}
+
+fn graded(value: f64, limits: (f64, f64)) -> Status {
+    if value > limits.1 {
+        Status::Exceeded
+    } else if value > limits.0 {
+        Status::Caution
+    } else {
+        Status::Acceptable
+    }
+}
+
+fn pct(f: f64) -> String {
+    format!("{:.0} %MVC", 100.0 * f)
+}
+
+/// Judges `plan` of `task` by every criterion (its meaning, phase assessments and rest advice
+/// already computed).
+pub fn shift_verdict(
+    task: &Task,
+    plan: &Plan,
+    meaning: &Meaning,
+    phases: &[PhaseAssessment],
+    rest: &RestAdvice,
+    lifting: Option<&Lifting>,
+) -> ShiftVerdict {
+    let loads = last_cycle_loads(task, plan);
+    let criteria = vec![
+        fatigue_model(task, meaning),
+        jonsson(task, &loads, "jonsson_static"),
+        jonsson(task, &loads, "jonsson_mean"),
+        jonsson(task, &loads, "jonsson_peak"),
+        iso_11226(task, phases),
+        en_1005_4(task, phases),
+        rohmert(task, &loads, rest),
+        low_back(phases, lifting),
+    ];
+    // the solver's status before any criterion: what the plan proves, and what it leaves open
+    let mut unproven = Vec::new();
+    let mut proven = Vec::new();
+    let mut unconverged = Vec::new();
+    for s in &plan.summary.phases {
+        let problems: Vec<String> = s.problems();
+        if !s.reachable && (s.beyond_reach_m.is_some() || s.target_inside.is_some()) {
+            proven.extend(problems);
+        } else {
+            unproven.extend(
+                problems
+                    .into_iter()
+                    .map(|p| format!("the optimiser found no acceptable posture: {p}")),
+            );
+        }
+        if !s.solve.determined() {
+            unconverged.push(format!(
+                "the optimiser did not converge on '{}' ({}, optimality residual {:.1e})",
+                s.phase,
+                match s.solve.stop {
+                    Stop::IterationLimit => "iteration limit",
+                    Stop::QpFailed => "a QP failed",
+                    _ => "stalled",
+                },
+                s.kkt_residual
+            ));
+        }
+    }
+    if plan.summary.rest_clearance_m < 0.0 {
+        unproven.push(format!(
+            "the optimiser found no rest posture clear of '{}'",
+            plan.summary
+                .rest_closest
+                .as_deref()
+                .unwrap_or("an obstacle")
+        ));
+    }
+    if !proven.is_empty() {
+        return ShiftVerdict {
+            status: Status::Exceeded,
+            binding: None,
+            headline: format!("cannot be done: {}", proven.join("; ")),
+            not_determined: Vec::new(),
+            criteria,
+        };
+    }
+    if !unproven.is_empty() {
+        let not_determined: Vec<String> = unproven.into_iter().chain(unconverged).collect();
+        return ShiftVerdict {
+            status: Status::NotDetermined,
+            binding: None,
+            headline: format!(
+                "not determined: {}; the plan found is not a feasible one, and that does not prove that none is",
+                not_determined.join("; ")
+            ),
+            not_determined,
+            criteria,
+        };
+    }
+    let worst = criteria
+        .iter()
+        .map(|c| c.status)
+        .max()
+        .unwrap_or(Status::Acceptable);
+    let binding = criteria.iter().find(|c| c.status == worst);
+    let others: Vec<&str> = criteria
+        .iter()
+        .filter(|c| c.status == worst && Some(c.id) != binding.map(|b| b.id))
+        .map(|c| c.name)
+        .collect();
+    let also = if others.is_empty() {
+        String::new()
+    } else {
+        format!(" (also {})", others.join(", "))
+    };
+    // the headline names the binding criterion with its first two findings
+    let short = |w: &str| {
+        let parts: Vec<&str> = w.split("; ").collect();
+        if parts.len() > 2 {
+            format!("{}; {} (and {} more)", parts[0], parts[1], parts.len() - 2)
+        } else {
+            w.to_string()
+        }
+    };
+    // A feasible plan is a witness: what it passes, the best plan passes too. What it fails is
+    // proven only when the optimiser finished; else it is not determined.
+    if !unconverged.is_empty() && worst != Status::Acceptable {
+        let b = binding.expect("a criterion is worse than acceptable");
+        return ShiftVerdict {
+            status: Status::NotDetermined,
+            binding: None,
+            headline: format!(
+                "not determined: {}; the plan it found is {} by {} — {}{also}, and a finished plan may do better",
+                unconverged.join("; "),
+                b.status.words(),
+                b.name,
+                short(&b.words)
+            ),
+            not_determined: unconverged,
+            criteria,
+        };
+    }
+    let headline = match (worst, binding) {
+        (Status::Acceptable, _) | (_, None) => format!(
+            "acceptable: this pace can be kept up indefinitely by every criterion checked (fatigue model, Jonsson's load levels, ISO 11226 static postures, EN 1005-4 movements, Rohmert's endurance, NIOSH's low-back limits); {}",
+            criteria[0].words
+        ),
+        (Status::Caution, Some(b)) => format!(
+            "conditionally acceptable, not to be called sustainable indefinitely: {} — {}{also}",
+            b.name,
+            short(&b.words)
+        ),
+        (Status::Exceeded, Some(b)) => format!(
+            "not acceptable over the shift: {} — {}{also}",
+            b.name,
+            short(&b.words)
+        ),
+        (Status::NotDetermined, Some(b)) => {
+            format!("not determined: {} — {}{also}", b.name, short(&b.words))
+        }
+    };
+    let headline = if unconverged.is_empty() {
+        headline
+    } else {
+        format!(
+            "{headline} (a witness: {}; a finished plan can only do better)",
+            unconverged.join("; ")
+        )
+    };
+    ShiftVerdict {
+        status: worst,
+        binding: binding
+            .filter(|_| worst != Status::Acceptable)
+            .map(|b| b.id),
+        headline,
+        not_determined: Vec::new(),
+        criteria,
+    }
+}
+
+fn fatigue_model(task: &Task, m: &Meaning) -> Criterion {
+    let status = match m.exhaustion_verdict {
+        "gives_out"
+            if m.minutes_to_exhaustion
+                .is_some_and(|t| t * 60.0 <= task.duration_s()) =>
+        {
+            Status::Exceeded
+        }
+        "gives_out" | "not_determined" => Status::Caution,
+        _ => Status::Acceptable,
+    };
+    Criterion {
+        id: "fatigue_model",
+        name: "the fatigue model",
+        status,
+        words: m.words.clone(),
+        source: MODEL_SOURCE,
+    }
+}
+
+fn jonsson(task: &Task, loads: &[Vec<f64>], id: &'static str) -> Criterion {
+    let (name, limits, what) = match id {
+        "jonsson_static" => (
+            "Jonsson's static load level",
+            JONSSON_STATIC,
+            "static load level (held 90 % of the cycle)",
+        ),
+        "jonsson_mean" => (
+            "Jonsson's mean load level",
+            JONSSON_MEAN,
+            "mean load over the cycle",
+        ),
+        _ => (
+            "Jonsson's peak load level",
+            JONSSON_PEAK,
+            "peak load level (exceeded 10 % of the cycle)",
+        ),
+    };
+    let durations = phase_durations(task);
+    let mut worst: Option<(f64, usize)> = None;
+    for (h, hj) in task.half_joints.iter().enumerate() {
+        if !JONSSON_REGIONS.contains(&hj.region.as_str()) {
+            continue;
+        }
+        let levels: Vec<(f64, f64)> = loads
+            .iter()
+            .zip(&durations)
+            .map(|(l, d)| (l[h].max(0.0), *d))
+            .collect();
+        let v = match id {
+            "jonsson_static" => time_quantile(&levels, 0.1),
+            "jonsson_mean" => time_mean(&levels),
+            _ => time_quantile(&levels, 0.9),
+        };
+        if worst.is_none_or(|w| v > w.0) {
+            worst = Some((v, h));
+        }
+    }
+    let (status, words) = match worst {
+        None => (
+            Status::Acceptable,
+            "no shoulder, arm, wrist or neck groups in this body".to_string(),
+        ),
+        Some((v, h)) => {
+            let status = graded(v, limits);
+            let against = match status {
+                Status::Acceptable => format!("within the recommended {}", pct(limits.0)),
+                Status::Caution => format!(
+                    "above the recommended {} but within the limit of {}",
+                    pct(limits.0),
+                    pct(limits.1)
+                ),
+                _ => format!("above the limit of {}", pct(limits.1)),
+            };
+            (
+                status,
+                format!(
+                    "the {}' {what} is {:.1} %MVC, {against}",
+                    task.half_joints[h].group,
+                    100.0 * v
+                ),
+            )
+        }
+    };
+    Criterion {
+        id,
+        name,
+        status,
+        words,
+        source: JONSSON_SOURCE,
+    }
+}
+
+/// Durations of the phases and the rest, in the order of [`last_cycle_loads`].
+fn phase_durations(task: &Task) -> Vec<f64> {
+    task.phases
+        .iter()
+        .map(|p| p.duration_s)
+        .chain(std::iter::once(task.rest_s))
+        .collect()
+}
+
+fn iso_11226(task: &Task, phases: &[PhaseAssessment]) -> Criterion {
+    let mut exceeded = Vec::new();
+    let mut caution = Vec::new();
+    let mut judged = 0;
+    for (p, pa) in phases.iter().enumerate() {
+        let Some(ph) = task.phases.get(p) else {
+            continue;
+        };
+        let hold_s = ph.duration_s;
+        let Some(a) = pa.angles.as_ref() else {
+            continue;
+        };
+        if hold_s <= ISO_STATIC_S {
+            continue;
+        }
+        judged += 1;
+        let name = &ph.name;
+        let t = a.trunk_flexion_deg.round();
+        if t > 60.0 {
+            exceeded.push(format!("'{name}': trunk inclined {t:.0}° (beyond 60°)"));
+        } else if t > 20.0 {
+            let max_s = iso_holding_time_s(t, ISO_TRUNK_HOLD_MIN);
+            if hold_s > max_s {
+                exceeded.push(format!(
+                    "'{name}': trunk inclined {t:.0}° held {hold_s:.0} s (at most {max_s:.0} s)"
+                ));
+            }
+        } else if t < -ISO_BACKWARD_TOLERANCE_DEG {
+            exceeded.push(format!("'{name}': trunk leaning back {:.0}°", -t));
+        }
+        for (v, what) in [
+            (a.trunk_side_bend_deg, "trunk bent sideways"),
+            (a.trunk_twist_deg, "trunk twisted"),
+        ] {
+            if v.abs().round() > 10.0 {
+                exceeded.push(format!("'{name}': {what} {:.0}° (beyond 10°)", v.abs()));
+            }
+        }
+        for (arm, side) in [(&a.right, "right"), (&a.left, "left")] {
+            let e = arm.upper_arm_elevation_deg.round();
+            if e > 60.0 {
+                exceeded.push(format!(
+                    "'{name}': {side} upper arm raised {e:.0}° (beyond 60°)"
+                ));
+            } else if e > 20.0 {
+                let max_s = iso_holding_time_s(e, ISO_ARM_HOLD_MIN);
+                if hold_s > max_s {
+                    exceeded.push(format!(
+                        "'{name}': {side} upper arm raised {e:.0}° held {hold_s:.0} s (at most {max_s:.0} s)"
+                    ));
+                }
+            }
+        }
+        let head = a.head_inclination_deg.round();
+        let neck = a.neck_flexion_deg.round();
+        if head > 85.0 {
+            exceeded.push(format!("'{name}': head inclined {head:.0}° (beyond 85°)"));
+        } else if head < -ISO_BACKWARD_TOLERANCE_DEG {
+            exceeded.push(format!("'{name}': head tilted back {:.0}°", -head));
+        } else if neck > 25.0 {
+            exceeded.push(format!(
+                "'{name}': neck flexed {neck:.0}° against the trunk (beyond 25°)"
+            ));
+        } else if head > 25.0 {
+            caution.push(format!(
+                "'{name}': head inclined {head:.0}° for {hold_s:.0} s (acceptable only for a limited holding time)"
+            ));
+        }
+    }
+    let (status, words) = if !exceeded.is_empty() {
+        (
+            Status::Exceeded,
+            format!("postures not acceptable: {}", exceeded.join("; ")),
+        )
+    } else if !caution.is_empty() {
+        (Status::Caution, caution.join("; "))
+    } else if judged == 0 {
+        (
+            Status::Acceptable,
+            format!(
+                "no phase is held longer than {ISO_STATIC_S:.0} s (no static posture to judge)"
+            ),
+        )
+    } else {
+        (
+            Status::Acceptable,
+            format!(
+                "every posture held longer than {ISO_STATIC_S:.0} s is within the acceptable zones and holding times"
+            ),
+        )
+    };
+    Criterion {
+        id: "iso_11226",
+        name: "ISO 11226 static postures",
+        status,
+        words,
+        source: ISO_SOURCE,
+    }
+}
+
+fn en_1005_4(task: &Task, phases: &[PhaseAssessment]) -> Criterion {
+    let mut exceeded = Vec::new();
+    let mut caution = Vec::new();
+    let mut judged = 0;
+    for (p, pa) in phases.iter().enumerate() {
+        let (Some(ph), Some(a)) = (task.phases.get(p), pa.angles.as_ref()) else {
+            continue;
+        };
+        if ph.duration_s > ISO_STATIC_S || ph.duration_s <= 0.0 {
+            continue;
+        }
+        judged += 1;
+        let per_min = task.phases.iter().filter(|o| o.same_work(ph)).count() as f64 * 60.0
+            / task.cycle_s().max(1e-9);
+        let high = per_min >= EN_HIGH_FREQUENCY_PER_MIN;
+        let name = &ph.name;
+        let mut out = |bad: bool, what: String| {
+            if bad {
+                exceeded.push(what)
+            } else {
+                caution.push(what)
+            }
+        };
+        for (v, what) in [
+            (a.trunk_side_bend_deg, "trunk bent sideways"),
+            (a.trunk_twist_deg, "trunk twisted"),
+        ] {
+            if v.abs().round() > 10.0 {
+                out(
+                    high,
+                    format!(
+                        "'{name}': {what} {:.0}° (beyond 10°) {per_min:.1} times a minute",
+                        v.abs()
+                    ),
+                );
+            }
+        }
+        for (arm, side) in [(&a.right, "right"), (&a.left, "left")] {
+            let e = arm.upper_arm_elevation_deg.round();
+            if e > 60.0 {
+                out(
+                    high,
+                    format!(
+                        "'{name}': {side} upper arm raised {e:.0}° (beyond 60°) {per_min:.1} times a minute"
+                    ),
+                );
+            } else if e > 20.0 && high {
+                out(
+                    false,
+                    format!(
+                        "'{name}': {side} upper arm raised {e:.0}° (20–60°, conditionally acceptable) {per_min:.1} times a minute"
+                    ),
+                );
+            }
+        }
+    }
+    let (status, words) = if !exceeded.is_empty() {
+        (
+            Status::Exceeded,
+            format!("movements not acceptable: {}", exceeded.join("; ")),
+        )
+    } else if !caution.is_empty() {
+        (
+            Status::Caution,
+            format!("conditionally acceptable: {}", caution.join("; ")),
+        )
+    } else if judged == 0 {
+        (
+            Status::Acceptable,
+            "every phase is held longer than 4 s (judged as static postures)".to_string(),
+        )
+    } else {
+        (
+            Status::Acceptable,
+            "every movement posture is within the acceptable zones".to_string(),
+        )
+    };
+    Criterion {
+        id: "en_1005_4",
+        name: "EN 1005-4 postures in movement",
+        status,
+        words,
+        source: EN_SOURCE,
+    }
+}
+
+fn rohmert(task: &Task, loads: &[Vec<f64>], rest: &RestAdvice) -> Criterion {
+    let r = &rest.rohmert;
+    let group = |id: &str| {
+        task.half_joints
+            .iter()
+            .find(|h| h.id == id)
+            .map_or(id.to_string(), |h| h.group.clone())
+    };
+    let mut too_long = Vec::new();
+    let mut above = None::<(f64, usize)>;
+    for (p, ph) in task.phases.iter().enumerate() {
+        for (h, &f) in loads[p].iter().enumerate() {
+            if f > 0.15 && f <= 1.0 {
+                let t_s = 60.0 * rohmert_endurance_min(f);
+                if ph.duration_s > t_s {
+                    too_long.push(format!(
+                        "'{}': the {} hold {} for {:.0} s, longer than Rohmert's endurance of {:.0} s",
+                        ph.name,
+                        task.half_joints[h].group,
+                        pct(f),
+                        ph.duration_s,
+                        t_s
+                    ));
+                }
+                if above.is_none_or(|a| f > a.0) {
+                    above = Some((f, h));
+                }
+            }
+        }
+    }
+    let (status, words) = if !r.over_mvc.is_empty() {
+        (
+            Status::Exceeded,
+            format!(
+                "loads above 100 %MVC ({}): Rohmert's rule has no answer",
+                r.over_mvc
+                    .iter()
+                    .map(|h| group(h))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        )
+    } else if !too_long.is_empty() {
+        (Status::Exceeded, too_long.join("; "))
+    } else if r.rest_s_per_cycle > rest.current_rest_s + 1e-9 {
+        (
+            Status::Exceeded,
+            format!(
+                "the {} need {:.1} s of rest per cycle by Rohmert's rest allowance; the cycle has {:.1} s",
+                group(&r.limiting_half_joint),
+                r.rest_s_per_cycle,
+                rest.current_rest_s
+            ),
+        )
+    } else if let Some((f, h)) = above {
+        (
+            Status::Caution,
+            format!(
+                "the {} hold {} (above Rohmert's 15 %MVC): sustainable only with the rest the cycle gives ({:.1} s, of which Rohmert asks {:.1} s)",
+                task.half_joints[h].group,
+                pct(f),
+                rest.current_rest_s,
+                r.rest_s_per_cycle
+            ),
+        )
+    } else {
+        (
+            Status::Acceptable,
+            "no hold above 15 %MVC (no rest allowance needed)".to_string(),
+        )
+    };
+    Criterion {
+        id: "rohmert",
+        name: "Rohmert's endurance and rest allowance",
+        status,
+        words,
+        source: ROHMERT_SOURCE,
+    }
+}
+
+fn low_back(phases: &[PhaseAssessment], lifting: Option<&Lifting>) -> Criterion {
+    let back = phases
+        .iter()
+        .filter_map(|p| p.low_back.as_ref().map(|b| (b.compression_n, &p.phase)))
+        .fold(None::<(f64, &String)>, |a, b| match a {
+            Some(x) if x.0 >= b.0 => Some(x),
+            _ => Some(b),
+        });
+    let li = lifting.and_then(|l| {
+        l.composite
+            .as_ref()
+            .and_then(|c| c.cli.map(|x| (x, "composite lifting index".to_string())))
+            .or_else(|| {
+                l.lifts
+                    .iter()
+                    .filter_map(|r| {
+                        r.lifting_index
+                            .map(|x| (x, format!("lifting index of '{}'", r.name)))
+                    })
+                    .max_by(|a, b| a.0.total_cmp(&b.0))
+            })
+    });
+    let mut parts = Vec::new();
+    let mut status = Status::Acceptable;
+    if let Some((c, phase)) = back {
+        let lim = super::low_back::BackParams::default();
+        let (al, mpl) = (lim.compression_action_limit_n, lim.compression_max_limit_n);
+        let s = graded(c, (al, mpl));
+        status = status.max(s);
+        parts.push(format!(
+            "L5/S1 compression up to {c:.0} N ('{phase}'), {}",
+            match s {
+                Status::Acceptable => format!("within NIOSH's action limit of {al:.0} N"),
+                Status::Caution => format!(
+                    "above NIOSH's action limit of {al:.0} N (controls required), within the maximum of {mpl:.0} N"
+                ),
+                _ => format!("above NIOSH's maximum permissible limit of {mpl:.0} N"),
+            }
+        ));
+    }
+    if let Some((x, what)) = li {
+        let s = graded(x, (1.0, 3.0));
+        status = status.max(s);
+        parts.push(format!(
+            "NIOSH {what} {x:.2}{}",
+            match s {
+                Status::Acceptable => " (at most 1: nearly all workers)",
+                Status::Caution => " (above 1: increased risk for some workers)",
+                _ => " (above 3: many workers at elevated risk)",
+            }
+        ));
+    }
+    Criterion {
+        id: "niosh_low_back",
+        name: "NIOSH's low-back limits",
+        status,
+        words: if parts.is_empty() {
+            "no low-back estimate and no declared lift".to_string()
+        } else {
+            parts.join("; ")
+        },
+        source: NIOSH_SOURCE,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Hand-computed: 20 s at 35 % and 20 s at 2 %: mean 18.5 %, the 10th percentile 2 %, the
+    /// 90th 35 %; the median is the lower level (half the time at or below 2 %).
+    #[test]
+    fn time_distribution_levels() {
+        let l = [(0.35, 20.0), (0.02, 20.0)];
+        assert!((time_mean(&l) - 0.185).abs() < 1e-12);
+        assert_eq!(time_quantile(&l, 0.1), 0.02);
+        assert_eq!(time_quantile(&l, 0.5), 0.02);
+        assert_eq!(time_quantile(&l, 0.9), 0.35);
+        // 85 % of the time at 25 %, 15 % at 0: the level held 90 % of the time is 0 (25 % is
+        // held only 85 % of the time); the 20th percentile is 25 %
+        let l = [(0.25, 85.0), (0.0, 15.0)];
+        assert_eq!(time_quantile(&l, 0.1), 0.0);
+        assert_eq!(time_quantile(&l, 0.2), 0.25);
+    }
+
+    /// ISO 11226's holding-time lines: 4 min at 20°, 1 min at 60° (trunk), 2.5 min at 40°.
+    #[test]
+    fn holding_time_lines() {
+        assert_eq!(iso_holding_time_s(20.0, ISO_TRUNK_HOLD_MIN), 240.0);
+        assert_eq!(iso_holding_time_s(60.0, ISO_TRUNK_HOLD_MIN), 60.0);
+        assert_eq!(iso_holding_time_s(40.0, ISO_TRUNK_HOLD_MIN), 150.0);
+        assert_eq!(iso_holding_time_s(40.0, ISO_ARM_HOLD_MIN), 120.0);
+    }
+
+    #[test]
+    fn grading_follows_the_two_figures() {
+        assert_eq!(graded(0.10, JONSSON_MEAN), Status::Acceptable);
+        assert_eq!(graded(0.12, JONSSON_MEAN), Status::Caution);
+        assert_eq!(graded(0.175, JONSSON_MEAN), Status::Exceeded);
+        assert!(Status::NotDetermined > Status::Exceeded);
+    }
+}
