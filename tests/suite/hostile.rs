@@ -2442,3 +2442,87 @@ fn exhaustion_not_reached_before_the_cycle_cap_is_not_determined_not_never() {
     assert_eq!(u["exhaustion_verdict"], "not_determined", "{u}");
     assert_eq!(u["minutes_followed"], m["minutes_followed"], "{u}");
 }
+
+/// Round three, finding 1: `robot --out X.urdf` writes its strength table to X.strength.yaml
+/// (named in --help); an existing one, or a symlink there, is refused, naming the file, unless
+/// `--force` (which overwrites a regular file only, never through a symlink).
+#[test]
+fn robot_refuses_to_overwrite_the_strength_table_it_was_not_told_to() {
+    let d = tempdir();
+    let args = |force: bool| {
+        let mut a = vec![
+            "robot",
+            "--sex",
+            "male",
+            "--stature-m",
+            "1.755",
+            "--mass-kg",
+            "78",
+            "--out",
+            "w.urdf",
+        ];
+        if force {
+            a.push("--force");
+        }
+        a
+    };
+    // the first run writes both
+    Run::new(&args(false))
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .ok();
+    let table = std::fs::read_to_string(d.path().join("w.strength.yaml")).unwrap();
+    // an existing table (the user's own data) is kept
+    write(d.path(), "w.strength.yaml", "my measured strengths\n");
+    Run::new(&args(false))
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["w.strength.yaml", "already exists", "--force"]);
+    assert_eq!(
+        std::fs::read_to_string(d.path().join("w.strength.yaml")).unwrap(),
+        "my measured strengths\n"
+    );
+    // --force overwrites a regular file
+    Run::new(&args(true))
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .ok();
+    assert_eq!(
+        std::fs::read_to_string(d.path().join("w.strength.yaml")).unwrap(),
+        table
+    );
+    // a symlink there is never followed, not even with --force
+    std::fs::remove_file(d.path().join("w.strength.yaml")).unwrap();
+    write(d.path(), "precious.txt", "keep me\n");
+    std::os::unix::fs::symlink("precious.txt", d.path().join("w.strength.yaml")).unwrap();
+    for force in [false, true] {
+        Run::new(&args(force))
+            .cwd(d.path())
+            .timeout(T_CHECK)
+            .go()
+            .bad(&["w.strength.yaml", "symlink"]);
+        assert_eq!(
+            std::fs::read_to_string(d.path().join("precious.txt")).unwrap(),
+            "keep me\n"
+        );
+    }
+    // a dangling symlink too
+    std::fs::remove_file(d.path().join("w.strength.yaml")).unwrap();
+    std::os::unix::fs::symlink("nowhere.yaml", d.path().join("w.strength.yaml")).unwrap();
+    Run::new(&args(true))
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["w.strength.yaml", "symlink"]);
+    assert!(!d.path().join("nowhere.yaml").exists());
+    // --help names the file and the option
+    let h = Run::new(&["robot", "--help"]).go();
+    let help = h.stdout_text();
+    assert!(
+        help.contains("NAME.strength.yaml") && help.contains("--force"),
+        "{help}"
+    );
+}
