@@ -2526,3 +2526,111 @@ fn robot_refuses_to_overwrite_the_strength_table_it_was_not_told_to() {
         "{help}"
     );
 }
+
+/// Runs `posture-opt ARGS` in `dir` with standard output closed (`>&-`).
+fn run_stdout_closed(dir: &Path, args: &[&str], stdin: Option<&str>) -> Out {
+    let mut script = String::from("\"$0\" \"$@\" >&-");
+    if stdin.is_some() {
+        script = format!("{script} <stdin.txt");
+    }
+    if let Some(s) = stdin {
+        write(dir, "stdin.txt", s);
+    }
+    let o = std::process::Command::new("sh")
+        .current_dir(dir)
+        .arg("-c")
+        .arg(script)
+        .arg(bin())
+        .args(args)
+        .env_remove("RUST_BACKTRACE")
+        .output()
+        .expect("sh");
+    Out {
+        code: o.status.code(),
+        stdout: o.stdout,
+        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
+        elapsed: Duration::ZERO,
+        timed_out: false,
+        peak_rss_kb: None,
+        what: format!("posture-opt {} >&-", args.join(" ")),
+    }
+}
+
+/// Round three, finding 2: a closed standard output (`>&-`) is an error (the answer would be
+/// lost), not exit 0; a run that writes only files still succeeds.
+#[test]
+fn a_closed_standard_output_is_an_error_not_a_lost_answer() {
+    let d = tempdir();
+    write(d.path(), "q.yaml", quick_task("q", 1.0, 2.0, 2.0, 1));
+    let rec = rel("recordings/shelf_plan.csv");
+    let shelf = rel("tasks/shelf.yaml");
+    let line = std::fs::read_to_string(&rec).unwrap();
+    let mut lines = line.lines();
+    let stream_in = format!(
+        "{}\n{}\n{}\n",
+        lines.next().unwrap(),
+        lines.next().unwrap(),
+        lines.next().unwrap()
+    );
+    let cases: Vec<(Vec<&str>, Option<&str>)> = vec![
+        (vec!["plan", "q.yaml", "--no-adapt", "--json"], None),
+        (vec!["plan", "q.yaml", "--no-adapt"], None),
+        (vec!["met", "--fmvc", "0.3"], None),
+        (vec!["schema"], None),
+        (vec!["evaluate", &rec, "--task", &shelf, "--json"], None),
+        (
+            vec!["evaluate", "--stream", "--task", &shelf],
+            Some(stream_in.as_str()),
+        ),
+        (
+            vec![
+                "robot",
+                "--sex",
+                "male",
+                "--stature-m",
+                "1.7",
+                "--mass-kg",
+                "70",
+            ],
+            None,
+        ),
+    ];
+    for (args, stdin) in cases {
+        let o = run_stdout_closed(d.path(), &args, stdin);
+        assert_no_panic(&o);
+        assert_eq!(o.code, Some(2), "{}: {}", o.what, o.stderr);
+        assert!(
+            o.stderr.contains("error:") && o.stderr.contains("standard output"),
+            "{}: {}",
+            o.what,
+            o.stderr
+        );
+    }
+    // nothing goes to standard output: a closed one is fine
+    let o = run_stdout_closed(
+        d.path(),
+        &[
+            "robot",
+            "--sex",
+            "male",
+            "--stature-m",
+            "1.7",
+            "--mass-kg",
+            "70",
+            "--out",
+            "r.urdf",
+        ],
+        None,
+    );
+    assert_eq!(o.code, Some(0), "{}", o.stderr);
+    // standard output sent to /dev/null on purpose is not closed
+    let null = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/null")
+        .unwrap();
+    Run::new(&["schema"])
+        .stdout_file(null)
+        .timeout(T_CHECK)
+        .go()
+        .ok();
+}
