@@ -703,6 +703,15 @@ impl Task {
                     )
                 })
             };
+            if feet_names[0] == feet_names[1] {
+                return Err(field(
+                    "stance.feet",
+                    format!(
+                        "names '{}' twice; the two feet must be two different frames",
+                        feet_names[0]
+                    ),
+                ));
+            }
             let feet = [foot(0)?, foot(1)?];
             let width = match sf.width_m {
                 Some(w) if w.is_finite() && (0.05..=1.5).contains(&w) => w,
@@ -774,6 +783,15 @@ impl Task {
         }
         let mut phases = Vec::with_capacity(f.phases.len());
         for (i, ph) in f.phases.iter().enumerate() {
+            if let Some(j) = f.phases[..i].iter().position(|p| p.name == ph.name) {
+                return Err(field(
+                    &format!("phases[{i}].name"),
+                    format!(
+                        "'{}' is also the name of phases[{j}]; phase names must be unique (lifts and reports name phases)",
+                        ph.name
+                    ),
+                ));
+            }
             phases.push(check_phase(i, ph, &hand_links, &gravity, &field)?);
         }
         if f.cycles == 0 {
@@ -843,10 +861,21 @@ impl Task {
                     )
                 })
             };
+            let origin = find("origin", &l.origin)?;
+            let destination = find("destination", &l.destination)?;
+            if origin == destination {
+                return Err(field(
+                    &format!("lifts[{i}] ({}).destination", l.name),
+                    format!(
+                        "is '{}', the lift's origin too; a lift moves the load from one phase to another",
+                        l.destination
+                    ),
+                ));
+            }
             lifts.push(Lift {
                 name: l.name.clone(),
-                origin: find("origin", &l.origin)?,
-                destination: find("destination", &l.destination)?,
+                origin,
+                destination,
                 coupling: l.coupling,
                 control_at_destination: l.control_at_destination,
             });

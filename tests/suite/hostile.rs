@@ -2634,3 +2634,72 @@ fn a_closed_standard_output_is_an_error_not_a_lost_answer() {
         .go()
         .ok();
 }
+
+/// Round three, finding 3: a task's silent wrong answers — two phases of one name (a lift then
+/// resolved to the first), a lift from a phase to itself, and one frame for both feet (the
+/// ankle reported at 165 %MVC) — are refused naming the field.
+#[test]
+fn duplicate_phases_self_lifts_and_one_foot_twice_are_refused() {
+    let d = tempdir();
+    let head =
+        "name: t\nworker: {sex: male, stature_m: 1.755, mass_kg: 78.0}\nrest_s: 2.0\ncycles: 1\n";
+    let ph = |n: &str, x: f64| {
+        format!("  - {{name: {n}, target_m: [{x}, -0.2, 1.0], load_kg: 2.0, duration_s: 2.0}}\n")
+    };
+    write(
+        d.path(),
+        "dup.yaml",
+        format!(
+            "{head}phases:\n{}{}{}lifts:\n  - {{name: up, origin: a, destination: b}}\n",
+            ph("a", 0.3),
+            ph("b", 0.35),
+            ph("a", 0.4)
+        ),
+    );
+    Run::new(&["plan", "dup.yaml"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["dup.yaml", "phases[2].name", "'a'", "phases[0]"]);
+    write(
+        d.path(),
+        "self.yaml",
+        format!(
+            "{head}phases:\n{}{}lifts:\n  - {{name: up, origin: a, destination: a}}\n",
+            ph("a", 0.3),
+            ph("b", 0.35)
+        ),
+    );
+    Run::new(&["plan", "self.yaml"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["self.yaml", "lifts[0] (up)", "origin"]);
+    for feet in ["[l_foot, l_foot]", "[r_foot, r_foot]"] {
+        write(
+            d.path(),
+            "feet.yaml",
+            format!("{head}phases:\n{}stance: {{feet: {feet}}}\n", ph("a", 0.3)),
+        );
+        Run::new(&["plan", "feet.yaml"])
+            .cwd(d.path())
+            .timeout(T_CHECK)
+            .go()
+            .bad(&["feet.yaml", "stance.feet", "twice"]);
+    }
+    // the distinct names are accepted (stopped at the output check)
+    write(
+        d.path(),
+        "fine.yaml",
+        format!(
+            "{head}phases:\n{}{}lifts:\n  - {{name: up, origin: a, destination: b}}\nstance: {{feet: [l_foot, r_foot]}}\n",
+            ph("a", 0.3),
+            ph("b", 0.35)
+        ),
+    );
+    Run::new(&["plan", "fine.yaml", "--csv", "nodir/x.csv"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["nodir"]);
+}
