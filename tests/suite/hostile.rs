@@ -2703,3 +2703,58 @@ fn duplicate_phases_self_lifts_and_one_foot_twice_are_refused() {
         .go()
         .bad(&["nodir"]);
 }
+
+/// Round three, finding 4: `fit` on data that cannot identify k — three identical rows (no
+/// scatter: a zero-width interval), or every row at 100 %MVC (k does not change the prediction:
+/// a fake "converged" at the starting value) — is refused naming the file and the problem.
+#[test]
+fn fit_refuses_data_that_cannot_identify_k() {
+    let d = tempdir();
+    write(
+        d.path(),
+        "same.csv",
+        "region,load_fmvc,endurance_s\nshoulder,0.5,120\nshoulder,0.5,120\nshoulder,0.5,120\n",
+    );
+    Run::new(&["fit", "same.csv", "--json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["same.csv", "1 distinct measurement", "repeat"]);
+    write(
+        d.path(),
+        "full.csv",
+        "region,load_fmvc,endurance_s\nshoulder,1.0,5\nshoulder,1.0,7\nshoulder,1.0,6\n",
+    );
+    Run::new(&["fit", "full.csv", "--json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["full.csv", "'shoulder'", "cannot identify"]);
+    // one region at 100 %MVC beside an identifiable one is still refused, naming the region
+    write(
+        d.path(),
+        "mixed.csv",
+        "region,load_fmvc,endurance_s\nelbow,0.5,120\nelbow,0.4,200\nelbow,0.3,330\nshoulder,1.0,5\nshoulder,1.0,7\n",
+    );
+    Run::new(&["fit", "mixed.csv"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["mixed.csv", "'shoulder'"]);
+    // distinct rows below 100 %MVC fit, with an interval of non-zero width
+    write(
+        d.path(),
+        "good.csv",
+        "region,load_fmvc,endurance_s\nshoulder,0.5,120\nshoulder,0.5,130\nshoulder,0.4,190\n",
+    );
+    let o = Run::new(&["fit", "good.csv", "--json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go();
+    o.ok();
+    let k = &o.json()["regions"][0]["k_per_min"];
+    assert!(
+        k["high"].as_f64().unwrap() > k["low"].as_f64().unwrap(),
+        "{k}"
+    );
+}
