@@ -2758,3 +2758,71 @@ fn fit_refuses_data_that_cannot_identify_k() {
         "{k}"
     );
 }
+
+/// Round three, finding 5: `compare --merge` read a shard edited to a negative fatigue and a
+/// capacity of 7 and ranked it. Every number read back from a shard is checked like an input,
+/// refused naming the shard file and the field.
+#[test]
+fn compare_merge_checks_the_numbers_of_its_shards() {
+    let d = tempdir();
+    write(d.path(), "q1.yaml", quick_task("q1", 1.0, 2.0, 2.0, 1));
+    write(d.path(), "q2.yaml", quick_task("q2", 2.0, 2.0, 2.0, 1));
+    let o = Run::new(&[
+        "compare",
+        "q1.yaml",
+        "q2.yaml",
+        "--no-adapt",
+        "--shard",
+        "1/1",
+        "--json",
+    ])
+    .cwd(d.path())
+    .timeout(T_PLAN)
+    .go();
+    o.ok();
+    let shard = o.json();
+    write(d.path(), "s.json", serde_json::to_vec(&shard).unwrap());
+    Run::new(&["compare", "--merge", "s.json", "--json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .ok();
+    let edits: [(&str, serde_json::Value, &str); 6] = [
+        (
+            "total_u_min",
+            serde_json::json!(-3.0),
+            "outcomes[0].total_u_min",
+        ),
+        (
+            "lowest_capacity",
+            serde_json::json!(7.0),
+            "outcomes[0].lowest_capacity",
+        ),
+        (
+            "capable_women",
+            serde_json::json!(1.5),
+            "outcomes[0].capable_women",
+        ),
+        (
+            "worst_u_min",
+            serde_json::json!(-0.5),
+            "outcomes[0].worst_u_min",
+        ),
+        (
+            "minutes_followed",
+            serde_json::json!(-1.0),
+            "outcomes[0].minutes_followed",
+        ),
+        ("index", serde_json::json!(7), "outcomes[0].index"),
+    ];
+    for (key, value, field) in edits {
+        let mut bad = shard.clone();
+        bad["outcomes"][0][key] = value;
+        write(d.path(), "bad.json", serde_json::to_vec(&bad).unwrap());
+        Run::new(&["compare", "--merge", "bad.json"])
+            .cwd(d.path())
+            .timeout(T_CHECK)
+            .go()
+            .bad(&["bad.json", field]);
+    }
+}
