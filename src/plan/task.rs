@@ -554,21 +554,35 @@ impl Task {
                     && let Some(made_for) = generated_for(&text)
                 {
                     let w = &f.worker;
-                    if made_for.0 != w.sex.name()
-                        || (made_for.1 - w.stature_m).abs() > 5e-4
-                        || (made_for.2 - w.mass_kg).abs() > 5e-3
-                    {
+                    // the sex is compared without case (earlier versions wrote "Male"); only
+                    // the fields that differ are named
+                    let mut differ = Vec::new();
+                    if !made_for.0.eq_ignore_ascii_case(w.sex.name()) {
+                        differ.push(format!(
+                            "sex {} (the task's worker: {})",
+                            made_for.0,
+                            w.sex.name()
+                        ));
+                    }
+                    if (made_for.1 - w.stature_m).abs() > 5e-4 {
+                        differ.push(format!(
+                            "stature {} m (the task's worker: {} m)",
+                            made_for.1, w.stature_m
+                        ));
+                    }
+                    if (made_for.2 - w.mass_kg).abs() > 5e-3 {
+                        differ.push(format!(
+                            "mass {} kg (the task's worker: {} kg)",
+                            made_for.2, w.mass_kg
+                        ));
+                    }
+                    if !differ.is_empty() {
                         return Err(field(
                             "robot",
                             format!(
-                                "{} was generated for a {} of {} m and {} kg, but the task's worker is a {} of {} m and {} kg: regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
+                                "{} was generated for another worker: {}; regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
                                 urdf.display(),
-                                made_for.0,
-                                made_for.1,
-                                made_for.2,
-                                w.sex.name(),
-                                w.stature_m,
-                                w.mass_kg,
+                                differ.join(", "),
                                 w.sex.name(),
                                 w.stature_m,
                                 w.mass_kg
@@ -652,7 +666,14 @@ impl Task {
         if f.left_hand_frame.is_some() && hand_links[1].is_none() {
             return Err(field(
                 "left_hand_frame",
-                format!("'{}' is not a link of the robot", hand_names[1]),
+                format!(
+                    "'{}' is not a link of the robot{}",
+                    hand_names[1],
+                    crate::schema::did_you_mean(
+                        &hand_names[1],
+                        model.links.iter().map(|l| l.name.as_str())
+                    )
+                ),
             ));
         }
         let half_joints = resolve_half_joints(
