@@ -2923,3 +2923,45 @@ fn messages_name_the_field_the_value_the_range_and_the_real_difference() {
         .go()
         .bad(&["h.yaml", "hand_frame", "did you mean 'r_hand_grip' or 'l_hand_grip'"]);
 }
+
+/// Round three, finding 7: `statics` refused a standard UR5 URDF for its mesh collision shapes,
+/// which statics never uses. They are ignored there (the mesh files need not exist); planning
+/// still refuses meshes, saying statics accepts them.
+#[test]
+fn statics_accepts_a_ur5_with_mesh_collision_shapes() {
+    let urdf = hostile("ur5_meshes.urdf").display().to_string();
+    let o = Run::new(&[
+        "statics",
+        "--robot",
+        &urdf,
+        "--frame",
+        "ee_link",
+        "--q",
+        "shoulder_lift_joint=-1.5707963,wrist_1_joint=-1.5707963",
+        "--hand-load-kg",
+        "2",
+        "--json",
+    ])
+    .timeout(T_CHECK)
+    .go();
+    o.ok();
+    let v = o.json();
+    let text = v.to_string();
+    assert!(
+        text.contains("shoulder_lift_joint") && text.contains("elbow_joint"),
+        "{text}"
+    );
+    // a plan with that robot is refused for the meshes, with the way out named
+    let d = tempdir();
+    std::fs::copy(hostile("ur5_meshes.urdf"), d.path().join("ur5.urdf")).unwrap();
+    write(
+        d.path(),
+        "t.yaml",
+        format!("{}robot: ur5.urdf\n", quick_task("u", 1.0, 2.0, 2.0, 1)),
+    );
+    Run::new(&["plan", "t.yaml"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["ur5.urdf", "mesh", "statics"]);
+}
