@@ -2827,6 +2827,72 @@ fn compare_merge_checks_the_numbers_of_its_shards() {
     }
 }
 
+/// Round three, finding 5 (sweep): `sweep --merge` checks its shards' numbers the same way.
+#[test]
+fn sweep_merge_checks_the_numbers_of_its_shards() {
+    let d = tempdir();
+    write(d.path(), "q.yaml", quick_task("q", 1.0, 2.0, 2.0, 1));
+    let o = Run::new(&[
+        "sweep",
+        "q.yaml",
+        "--no-adapt",
+        "--sample",
+        "2",
+        "--seed",
+        "3",
+        "--shard",
+        "1/1",
+        "--json",
+    ])
+    .cwd(d.path())
+    .timeout(T_PLAN)
+    .go();
+    o.ok();
+    let shard = o.json();
+    write(d.path(), "s.json", serde_json::to_vec(&shard).unwrap());
+    Run::new(&["sweep", "--merge", "s.json", "--json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .ok();
+    let edits: [(&str, serde_json::Value, &str); 4] = [
+        (
+            "total_u_min",
+            serde_json::json!(-3.0),
+            "workers[0].total_u_min",
+        ),
+        (
+            "lowest_capacity",
+            serde_json::json!(7.0),
+            "workers[0].lowest_capacity",
+        ),
+        (
+            "minutes_followed",
+            serde_json::json!(-1.0),
+            "workers[0].minutes_followed",
+        ),
+        ("index", serde_json::json!(9), "workers[0].index"),
+    ];
+    for (key, value, field) in edits {
+        let mut bad = shard.clone();
+        bad["workers"][0][key] = value;
+        write(d.path(), "bad.json", serde_json::to_vec(&bad).unwrap());
+        Run::new(&["sweep", "--merge", "bad.json"])
+            .cwd(d.path())
+            .timeout(T_CHECK)
+            .go()
+            .bad(&["bad.json", field]);
+    }
+    let mut bad = shard.clone();
+    bad["workers"][0]["worker"]["stature_m"] = serde_json::json!(-1.7);
+    write(d.path(), "bad.json", serde_json::to_vec(&bad).unwrap());
+    Run::new(&["sweep", "--merge", "bad.json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["bad.json", "workers[0].worker"]);
+}
+
 /// Round three, finding 6: messages that named the wrong thing — an integer out of range ("invalid
 /// u32"), a robot of an earlier version for the same worker ("Male" against "male"), a hand frame
 /// with two equally close candidates (one suggested).
@@ -2921,7 +2987,11 @@ fn messages_name_the_field_the_value_the_range_and_the_real_difference() {
         .cwd(d.path())
         .timeout(T_CHECK)
         .go()
-        .bad(&["h.yaml", "hand_frame", "did you mean 'r_hand_grip' or 'l_hand_grip'"]);
+        .bad(&[
+            "h.yaml",
+            "hand_frame",
+            "did you mean 'r_hand_grip' or 'l_hand_grip'",
+        ]);
 }
 
 /// Round three, finding 7: `statics` refused a standard UR5 URDF for its mesh collision shapes,
