@@ -787,8 +787,44 @@ impl Task {
         let (fatigue, fatigue_choice, parameter_set) =
             resolve_fatigue(&f.fatigue, file_set, &half_joints, &f.worker, &field)?;
 
+        // Where the standing worker's hips are (the feet's midpoint forward, at 53 % of the
+        // stature): an obstacle holding that point encloses the worker, passes through him, or
+        // is a plane whose solid side is his. The planner would search for minutes for a posture
+        // out of it; it is refused at once.
+        let hips = stance.as_ref().map(|_| {
+            Vector3::new(
+                f.stance.as_ref().map_or(0.0, |s| s.forward_m),
+                0.0,
+                0.53 * f.worker.stature_m,
+            )
+        });
         let workstation = Workstation::new(f.workstation.obstacles)
             .map_err(|e| field("workstation.obstacles", e.to_string()))?;
+        if let Some(hips) = hips {
+            for (i, o) in workstation.obstacles.iter().enumerate() {
+                if !o.contains(&hips) {
+                    continue;
+                }
+                let why = match &o.spec.shape {
+                    crate::workstation::ShapeSpec::Plane { normal } => format!(
+                        "the worker stands on its solid side (a plane's normal points from the solid toward free space; this one, {normal:?}, points away from the worker)"
+                    ),
+                    crate::workstation::ShapeSpec::Cylinder { .. } => {
+                        "it passes through the worker".to_string()
+                    }
+                    crate::workstation::ShapeSpec::Box { .. } => {
+                        "it encloses the worker or passes through him".to_string()
+                    }
+                };
+                return Err(field(
+                    &format!("workstation.obstacles[{i}] ({})", o.spec.name),
+                    format!(
+                        "holds the standing worker's hips ({:.2}, {:.2}, {:.2}) m: {why}; the worker stands at the origin facing +x, so move or resize the obstacle",
+                        hips.x, hips.y, hips.z
+                    ),
+                ));
+            }
+        }
 
         if f.phases.is_empty() {
             return Err(field("phases", "at least one phase is needed".into()));

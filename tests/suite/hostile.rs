@@ -3035,3 +3035,50 @@ fn statics_accepts_a_ur5_with_mesh_collision_shapes() {
         .go()
         .bad(&["ur5.urdf", "mesh", "statics"]);
 }
+
+/// Round three, finding 8: an obstacle that encloses the standing worker, a cylinder through him,
+/// or a plane whose normal points down at the floor made `plan` search for minutes; they are
+/// refused at once naming the obstacle. A ceiling (a plane above the head, normal down) is not.
+#[test]
+fn obstacles_holding_the_worker_are_refused_at_once() {
+    let d = tempdir();
+    let base = quick_task("o", 1.0, 2.0, 2.0, 1);
+    for (obstacle, needle) in [
+        (
+            "{name: cage, box: {size_m: [3, 3, 3]}, position_m: [0, 0, 1.5]}",
+            "obstacles[0] (cage)",
+        ),
+        (
+            "{name: pole, cylinder: {radius_m: 0.1, height_m: 3}, position_m: [0, 0, 1.5]}",
+            "obstacles[0] (pole)",
+        ),
+        (
+            "{name: floor, plane: {normal: [0, 0, -1]}, position_m: [0, 0, 0]}",
+            "obstacles[0] (floor)",
+        ),
+    ] {
+        write(
+            d.path(),
+            "o.yaml",
+            format!("{base}workstation:\n  obstacles:\n    - {obstacle}\n"),
+        );
+        let o = Run::new(&["plan", "o.yaml", "--no-adapt"])
+            .cwd(d.path())
+            .timeout(T_CHECK)
+            .go();
+        o.bad(&["o.yaml", needle, "hips"]);
+        assert!(o.elapsed < Duration::from_secs(10), "{:?}", o.elapsed);
+    }
+    write(
+        d.path(),
+        "o.yaml",
+        format!(
+            "{base}workstation:\n  obstacles:\n    - {{name: ceiling, plane: {{normal: [0, 0, -1]}}, position_m: [0, 0, 2.6]}}\n    - {{name: floor, plane: {{normal: [0, 0, 1]}}, position_m: [0, 0, 0]}}\n"
+        ),
+    );
+    Run::new(&["plan", "o.yaml", "--csv", "nodir/x.csv"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["nodir"]);
+}
