@@ -734,25 +734,109 @@ fn cell(s: &str) -> String {
     s.replace('|', "\\|")
 }
 
-/// `" (did you mean 'x'?)"` when one of `candidates` is close to `word`, else "".
+/// `" (did you mean 'x'?)"` when one of `candidates` is close to `word`, else "". The rule: the
+/// candidates of the highest normalised Damerau-Levenshtein similarity (at least 0.5, or a
+/// prefix either way) are suggested, all of them when several tie (`hand_grip` → `'l_hand_grip'
+/// or 'r_hand_grip'`, in the candidates' order; at most four).
 pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> String {
     // a typo is short; comparing a long string costs O(n·m) for no useful hint
     if word.chars().count() > 64 {
         return String::new();
     }
-    let best = candidates
+    let close: Vec<(f64, &str)> = candidates
         .map(|c| (strsim::normalized_damerau_levenshtein(word, c), c))
         .filter(|(s, c)| *s >= 0.5 || c.starts_with(word) || word.starts_with(c))
-        .max_by(|a, b| a.0.total_cmp(&b.0));
-    match best {
-        Some((_, c)) if c != word => format!(" (did you mean '{c}'?)"),
-        _ => String::new(),
+        .collect();
+    let Some(best) = close.iter().map(|x| x.0).max_by(f64::total_cmp) else {
+        return String::new();
+    };
+    let mut names: Vec<&str> = Vec::new();
+    for (s, c) in &close {
+        if *s >= best - 1e-12 && !names.contains(c) {
+            names.push(c);
+        }
     }
+    if names.contains(&word) {
+        return String::new();
+    }
+    names.truncate(4);
+    let quoted: Vec<String> = names.iter().map(|n| format!("'{n}'")).collect();
+    format!(" (did you mean {}?)", quoted.join(" or "))
+}
+
+/// The accepted range of an integer type the YAML reader names ("invalid u32").
+fn integer_range(ty: &str) -> Option<(i128, i128)> {
+    Some(match ty {
+        "u8" => (0, u8::MAX as i128),
+        "u16" => (0, u16::MAX as i128),
+        "u32" => (0, u32::MAX as i128),
+        "u64" | "usize" => (0, u64::MAX as i128),
+        "i32" => (i32::MIN as i128, i32::MAX as i128),
+        "i64" | "isize" => (i64::MIN as i128, i64::MAX as i128),
+        _ => return None,
+    })
+}
+
+/// Rewrites the YAML reader's "invalid u32" (a number out of an integer's range) into the field,
+/// the value and the accepted range, read from the message's own source excerpt
+/// (`line L column C` and the line `L | key: value`).
+fn explain_invalid_integer(message: &str) -> Option<String> {
+    let at = message.find("invalid ")?;
+    let ty: String = message[at + 8..]
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric())
+        .collect();
+    let (lo, hi) = integer_range(&ty)?;
+    let lp = message.find("line ")?;
+    let rest = &message[lp + 5..];
+    let line: usize = rest.split(' ').next()?.parse().ok()?;
+    let cp = rest.find("column ")?;
+    let col: usize = rest[cp + 7..]
+        .split(|c: char| !c.is_ascii_digit())
+        .next()?
+        .parse()
+        .ok()?;
+    let prefix = format!("{line} | ");
+    let src = message
+        .lines()
+        .find_map(|l| l.trim_start().strip_prefix(prefix.as_str()))?;
+    let chars: Vec<char> = src.chars().collect();
+    let before: String = chars.iter().take(col.saturating_sub(1)).collect();
+    let value: String = chars
+        .iter()
+        .skip(col.saturating_sub(1))
+        .take_while(|c| !matches!(c, ',' | '}' | ']' | ' ' | '#'))
+        .collect();
+    let key_part = before.trim_end().strip_suffix(':')?;
+    let key: String = key_part
+        .chars()
+        .rev()
+        .take_while(|c| c.is_alphanumeric() || *c == '_')
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect();
+    if key.is_empty() || value.is_empty() {
+        return None;
+    }
+    let what = format!(
+        "{key}: {value} is not a whole number within {lo}..={hi} (the range this field accepts)"
+    );
+    let first = message.lines().next().unwrap_or("");
+    let first = first.replacen(&format!("invalid {ty}"), &what, 1);
+    Some(match message.split_once('\n') {
+        Some((_, rest)) => format!("{first}\n{rest}"),
+        None => first,
+    })
 }
 
 /// Adds a suggestion to a YAML parse error about an unknown field or variant: serde names the
-/// expected ones, this picks the closest (`rpy` → `rpy_rad`).
+/// expected ones, this picks the closest (`rpy` → `rpy_rad`). A number out of an integer
+/// field's range is reworded to name the field, the value and the range.
 pub fn explain_parse_error(message: &str) -> String {
+    if let Some(m) = explain_invalid_integer(message) {
+        return m;
+    }
     for (marker, list_marker) in [
         ("unknown field `", "expected one of "),
         ("unknown variant `", "expected one of "),
@@ -796,12 +880,38 @@ mod tests {
     use super::*;
 
     #[test]
+    fn an_integer_out_of_range_names_the_field_value_and_range() {
+        let m = "error: line 6 column 9: invalid u32\n --> t.yaml:6:9\n  |\n6 | cycles: 9223372036854775807\n  |         ^ invalid u32";
+        let e = explain_parse_error(m);
+        assert!(
+            e.starts_with(
+                "error: line 6 column 9: cycles: 9223372036854775807 is not a whole number within 0..=4294967295"
+            ),
+            "{e}"
+        );
+        let m = "error: line 3 column 24: invalid u32\n --> t.yaml:3:24\n  |\n3 | replan: {every_cycles: 99999999999}\n  |                      ^ invalid u32";
+        let e = explain_parse_error(m);
+        assert!(
+            e.contains("every_cycles: 99999999999 is not a whole number"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn suggests_the_nearest_field() {
         assert_eq!(
             did_you_mean("rpy", ["position_m", "rpy_rad", "name"].into_iter()),
             " (did you mean 'rpy_rad'?)"
         );
         assert_eq!(did_you_mean("zzz", ["alpha", "beta"].into_iter()), "");
+        // a tie names every candidate, both sides
+        assert_eq!(
+            did_you_mean(
+                "hand_grip",
+                ["l_hand_grip", "r_hand_grip", "head"].into_iter()
+            ),
+            " (did you mean 'l_hand_grip' or 'r_hand_grip'?)"
+        );
         let m = "unknown field `durations`, expected one of `name`, `target_m`, `duration_s`";
         assert!(explain_parse_error(m).ends_with("(did you mean 'duration_s'?)"));
     }

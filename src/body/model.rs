@@ -241,30 +241,62 @@ fn check_nesting(text: &str, origin: &str) -> Result<(), BodyError> {
     Ok(())
 }
 
+/// What a load does with mesh collision shapes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Meshes {
+    /// Refused (planning checks collisions with primitive shapes only).
+    Refuse,
+    /// Left out (statics never uses collision geometry).
+    Ignore,
+}
+
 impl BodyModel {
     /// Loads a URDF file.
     pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, BodyError> {
+        Self::from_urdf_file_with(path, Meshes::Refuse)
+    }
+
+    /// Loads a URDF file for statics alone (no collision checks): mesh collision shapes, which
+    /// only collision checking would use, are left out instead of refused (a standard robot's
+    /// URDF, such as a UR5's, has them).
+    pub fn from_urdf_file_for_statics(path: impl AsRef<Path>) -> Result<Self, BodyError> {
+        Self::from_urdf_file_with(path, Meshes::Ignore)
+    }
+
+    fn from_urdf_file_with(path: impl AsRef<Path>, meshes: Meshes) -> Result<Self, BodyError> {
         let path = path.as_ref();
         let p = path.display().to_string();
         let text = crate::io::read_text(path).map_err(|e| BodyError::Io {
             path: p.clone(),
             message: e.to_string(),
         })?;
-        Self::from_urdf_str(&text, &p)
+        Self::from_urdf_str_with(&text, &p, meshes)
     }
 
     /// Loads URDF text; `origin` names the source in error messages.
     pub fn from_urdf_str(text: &str, origin: &str) -> Result<Self, BodyError> {
+        Self::from_urdf_str_with(text, origin, Meshes::Refuse)
+    }
+
+    fn from_urdf_str_with(text: &str, origin: &str, meshes: Meshes) -> Result<Self, BodyError> {
         check_nesting(text, origin)?;
         let robot = urdf_rs::read_from_string(text).map_err(|e| BodyError::Urdf {
             path: origin.into(),
             message: e.to_string(),
         })?;
-        Self::from_robot(&robot, origin)
+        Self::from_robot_with(&robot, origin, meshes)
     }
 
     /// Builds the model from a parsed URDF.
     pub fn from_robot(robot: &urdf_rs::Robot, origin: &str) -> Result<Self, BodyError> {
+        Self::from_robot_with(robot, origin, Meshes::Refuse)
+    }
+
+    fn from_robot_with(
+        robot: &urdf_rs::Robot,
+        origin: &str,
+        meshes: Meshes,
+    ) -> Result<Self, BodyError> {
         let invalid = |element: String, problem: String| BodyError::Invalid {
             path: origin.into(),
             element,
@@ -378,11 +410,12 @@ impl BodyModel {
                             ),
                         });
                     }
+                    urdf_rs::Geometry::Mesh { .. } if meshes == Meshes::Ignore => {}
                     urdf_rs::Geometry::Mesh { ref filename, .. } => {
                         return Err(invalid(
                             el(),
                             format!(
-                                "mesh collision geometry ('{filename}') is not supported: use box, cylinder, capsule or sphere shapes for collision"
+                                "mesh collision geometry ('{filename}') is not supported for planning (collision checks use box, cylinder, capsule or sphere shapes; `posture-opt statics` accepts meshes and ignores them)"
                             ),
                         ));
                     }

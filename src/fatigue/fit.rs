@@ -508,6 +508,30 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
             ),
         });
     }
+    // rows repeated exactly carry one measurement, and no scatter to estimate an interval from
+    let mut distinct: Vec<&Row> = Vec::new();
+    for r in rows {
+        if !distinct.iter().any(|d| {
+            d.region == r.region
+                && d.load_fmvc == r.load_fmvc
+                && d.cycle_s == r.cycle_s
+                && d.what == r.what
+        }) {
+            distinct.push(r);
+            if distinct.len() > np {
+                break;
+            }
+        }
+    }
+    if distinct.len() <= np {
+        return Err(FitError::Data {
+            file: source.to_string(),
+            problem: format!(
+                "the {n} rows hold only {} distinct measurement(s) (the others repeat them exactly): that cannot fit {np} parameter(s) with confidence intervals (no scatter to estimate one from); give distinct measurements",
+                distinct.len()
+            ),
+        });
+    }
     // start: k from each region's rows by the closed form of a sustained hold without recovery
     let mut theta = vec![0.0; np];
     for (g, _) in pr.regions.iter().enumerate() {
@@ -554,6 +578,27 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
             }
         }
     };
+    // a parameter the predictions do not depend on (e.g. every row of a region at 100 %MVC,
+    // which gives out at once whatever k is) is not identified by the data: the fit would stop
+    // at its starting value and call it converged
+    // (looked at from the start, over ±0.1 in the log: intermittent rows are staircases)
+    jacobian(&theta, &mut jac, &mut r2, 0.1);
+    for j in 0..np {
+        if jac.column(j).amax() < 1e-9 {
+            let what = if j < pr.regions.len() {
+                format!(
+                    "the predictions for region '{}' do not depend on its k (its rows are all at loads the model says give out at once, such as 100 %MVC): the data cannot identify k; give measurements at loads below 100 %MVC",
+                    pr.regions[j]
+                )
+            } else {
+                "the predictions do not depend on the recovery rate R_rest: the data cannot identify it; keep it fixed (--no-recovery-fit)".to_string()
+            };
+            return Err(FitError::Data {
+                file: source.to_string(),
+                problem: what,
+            });
+        }
+    }
     while iterations < 200 {
         iterations += 1;
         jacobian(&theta, &mut jac, &mut r2, 1e-6);

@@ -554,21 +554,35 @@ impl Task {
                     && let Some(made_for) = generated_for(&text)
                 {
                     let w = &f.worker;
-                    if made_for.0 != w.sex.name()
-                        || (made_for.1 - w.stature_m).abs() > 5e-4
-                        || (made_for.2 - w.mass_kg).abs() > 5e-3
-                    {
+                    // the sex is compared without case (earlier versions wrote "Male"); only
+                    // the fields that differ are named
+                    let mut differ = Vec::new();
+                    if !made_for.0.eq_ignore_ascii_case(w.sex.name()) {
+                        differ.push(format!(
+                            "sex {} (the task's worker: {})",
+                            made_for.0,
+                            w.sex.name()
+                        ));
+                    }
+                    if (made_for.1 - w.stature_m).abs() > 5e-4 {
+                        differ.push(format!(
+                            "stature {} m (the task's worker: {} m)",
+                            made_for.1, w.stature_m
+                        ));
+                    }
+                    if (made_for.2 - w.mass_kg).abs() > 5e-3 {
+                        differ.push(format!(
+                            "mass {} kg (the task's worker: {} kg)",
+                            made_for.2, w.mass_kg
+                        ));
+                    }
+                    if !differ.is_empty() {
                         return Err(field(
                             "robot",
                             format!(
-                                "{} was generated for a {} of {} m and {} kg, but the task's worker is a {} of {} m and {} kg: regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
+                                "{} was generated for another worker: {}; regenerate it (posture-opt robot --sex {} --stature-m {} --mass-kg {} --out ...) or leave robot out to generate the worker",
                                 urdf.display(),
-                                made_for.0,
-                                made_for.1,
-                                made_for.2,
-                                w.sex.name(),
-                                w.stature_m,
-                                w.mass_kg,
+                                differ.join(", "),
                                 w.sex.name(),
                                 w.stature_m,
                                 w.mass_kg
@@ -652,7 +666,14 @@ impl Task {
         if f.left_hand_frame.is_some() && hand_links[1].is_none() {
             return Err(field(
                 "left_hand_frame",
-                format!("'{}' is not a link of the robot", hand_names[1]),
+                format!(
+                    "'{}' is not a link of the robot{}",
+                    hand_names[1],
+                    crate::schema::did_you_mean(
+                        &hand_names[1],
+                        model.links.iter().map(|l| l.name.as_str())
+                    )
+                ),
             ));
         }
         let half_joints = resolve_half_joints(
@@ -703,6 +724,15 @@ impl Task {
                     )
                 })
             };
+            if feet_names[0] == feet_names[1] {
+                return Err(field(
+                    "stance.feet",
+                    format!(
+                        "names '{}' twice; the two feet must be two different frames",
+                        feet_names[0]
+                    ),
+                ));
+            }
             let feet = [foot(0)?, foot(1)?];
             let width = match sf.width_m {
                 Some(w) if w.is_finite() && (0.05..=1.5).contains(&w) => w,
@@ -757,8 +787,44 @@ impl Task {
         let (fatigue, fatigue_choice, parameter_set) =
             resolve_fatigue(&f.fatigue, file_set, &half_joints, &f.worker, &field)?;
 
+        // Where the standing worker's hips are (the feet's midpoint forward, at 53 % of the
+        // stature): an obstacle holding that point encloses the worker, passes through him, or
+        // is a plane whose solid side is his. The planner would search for minutes for a posture
+        // out of it; it is refused at once.
+        let hips = stance.as_ref().map(|_| {
+            Vector3::new(
+                f.stance.as_ref().map_or(0.0, |s| s.forward_m),
+                0.0,
+                0.53 * f.worker.stature_m,
+            )
+        });
         let workstation = Workstation::new(f.workstation.obstacles)
             .map_err(|e| field("workstation.obstacles", e.to_string()))?;
+        if let Some(hips) = hips {
+            for (i, o) in workstation.obstacles.iter().enumerate() {
+                if !o.contains(&hips) {
+                    continue;
+                }
+                let why = match &o.spec.shape {
+                    crate::workstation::ShapeSpec::Plane { normal } => format!(
+                        "the worker stands on its solid side (a plane's normal points from the solid toward free space; this one, {normal:?}, points away from the worker)"
+                    ),
+                    crate::workstation::ShapeSpec::Cylinder { .. } => {
+                        "it passes through the worker".to_string()
+                    }
+                    crate::workstation::ShapeSpec::Box { .. } => {
+                        "it encloses the worker or passes through him".to_string()
+                    }
+                };
+                return Err(field(
+                    &format!("workstation.obstacles[{i}] ({})", o.spec.name),
+                    format!(
+                        "holds the standing worker's hips ({:.2}, {:.2}, {:.2}) m: {why}; the worker stands at the origin facing +x, so move or resize the obstacle",
+                        hips.x, hips.y, hips.z
+                    ),
+                ));
+            }
+        }
 
         if f.phases.is_empty() {
             return Err(field("phases", "at least one phase is needed".into()));
@@ -774,6 +840,15 @@ impl Task {
         }
         let mut phases = Vec::with_capacity(f.phases.len());
         for (i, ph) in f.phases.iter().enumerate() {
+            if let Some(j) = f.phases[..i].iter().position(|p| p.name == ph.name) {
+                return Err(field(
+                    &format!("phases[{i}].name"),
+                    format!(
+                        "'{}' is also the name of phases[{j}]; phase names must be unique (lifts and reports name phases)",
+                        ph.name
+                    ),
+                ));
+            }
             phases.push(check_phase(i, ph, &hand_links, &gravity, &field)?);
         }
         if f.cycles == 0 {
@@ -843,10 +918,21 @@ impl Task {
                     )
                 })
             };
+            let origin = find("origin", &l.origin)?;
+            let destination = find("destination", &l.destination)?;
+            if origin == destination {
+                return Err(field(
+                    &format!("lifts[{i}] ({}).destination", l.name),
+                    format!(
+                        "is '{}', the lift's origin too; a lift moves the load from one phase to another",
+                        l.destination
+                    ),
+                ));
+            }
             lifts.push(Lift {
                 name: l.name.clone(),
-                origin: find("origin", &l.origin)?,
-                destination: find("destination", &l.destination)?,
+                origin,
+                destination,
                 coupling: l.coupling,
                 control_at_destination: l.control_at_destination,
             });

@@ -713,6 +713,12 @@ pub enum MergeError {
         first: String,
         index: usize,
     },
+    #[error("{file}: {field}: {problem}")]
+    Value {
+        file: String,
+        field: String,
+        problem: String,
+    },
     #[error("layout {index} appears in two shards ({file})")]
     Twice { index: usize, file: String },
     #[error("the shards cover {got} of {total} layouts: missing {missing:?}")]
@@ -727,7 +733,103 @@ pub enum MergeError {
 /// the missing items are listed (a corrupt or hostile total would otherwise be allocated for).
 pub const MERGE_SLACK: usize = 1_000_000;
 
-/// Merges shard results (`names` name them in messages) into one comparison.
+/// Checks every number of a shard read back from a file as an input: finite, within its range
+/// (capacities and population shares 0..1, fatigue and durations >= 0, indices within the
+/// layout count). The error names the field.
+fn check_shard_values(s: &CompareShard) -> Result<(), (String, String)> {
+    let finite = |v: f64, f: String, lo: f64, hi: f64| -> Result<(), (String, String)> {
+        if v.is_finite() && v >= lo && v <= hi {
+            Ok(())
+        } else {
+            Err((
+                f,
+                format!("must be a finite number within {lo}..{hi}, got {v}"),
+            ))
+        }
+    };
+    let big = f64::MAX;
+    if !(s.capacity_floor.is_finite() && s.capacity_floor > 0.0 && s.capacity_floor < 1.0) {
+        return Err((
+            "capacity_floor".into(),
+            format!("must be between 0 and 1, got {}", s.capacity_floor),
+        ));
+    }
+    if s.layouts_total == 0 || s.layouts_total > MAX_LAYOUTS {
+        return Err((
+            "layouts_total".into(),
+            format!("must be 1..{MAX_LAYOUTS}, got {}", s.layouts_total),
+        ));
+    }
+    if s.outcomes.len() > s.layouts_total {
+        return Err((
+            "outcomes".into(),
+            format!(
+                "holds {} layouts, more than layouts_total ({})",
+                s.outcomes.len(),
+                s.layouts_total
+            ),
+        ));
+    }
+    for (i, o) in s.outcomes.iter().enumerate() {
+        let f = |name: &str| format!("outcomes[{i}].{name}");
+        if o.index >= s.layouts_total {
+            return Err((
+                f("index"),
+                format!(
+                    "must be below layouts_total ({}), got {}",
+                    s.layouts_total, o.index
+                ),
+            ));
+        }
+        finite(o.min_clearance_m, f("min_clearance_m"), -big, big)?;
+        if let Some(m) = o.min_balance_margin_m {
+            finite(m, f("min_balance_margin_m"), -big, big)?;
+        }
+        finite(o.planned_duration_s, f("planned_duration_s"), 0.0, big)?;
+        finite(o.simulated_duration_s, f("simulated_duration_s"), 0.0, big)?;
+        finite(o.total_u_min, f("total_u_min"), 0.0, big)?;
+        finite(o.u_per_hour_min, f("u_per_hour_min"), 0.0, big)?;
+        finite(o.worst_u_min, f("worst_u_min"), 0.0, big)?;
+        finite(o.lowest_capacity, f("lowest_capacity"), 0.0, 1.0)?;
+        finite(o.lowest_capacity_t_s, f("lowest_capacity_t_s"), 0.0, big)?;
+        if let Some(e) = &o.exhaustion {
+            finite(e.t_s, f("exhaustion.t_s"), 0.0, big)?;
+            finite(e.load, f("exhaustion.load"), 0.0, big)?;
+        }
+        if let Some(m) = o.minutes_to_exhaustion {
+            finite(m, f("minutes_to_exhaustion"), 0.0, big)?;
+        }
+        finite(o.minutes_followed, f("minutes_followed"), 0.0, big)?;
+        finite(o.endurance_share, f("endurance_share"), 0.0, big)?;
+        if let Some(li) = o.lifting_index {
+            finite(li, f("lifting_index"), 0.0, big)?;
+        }
+        if let Some(c) = o.back_compression_max_n {
+            finite(c, f("back_compression_max_n"), 0.0, big)?;
+        }
+        finite(o.capable_women, f("capable_women"), 0.0, 1.0)?;
+        finite(o.capable_men, f("capable_men"), 0.0, 1.0)?;
+        finite(o.current_rest_s, f("current_rest_s"), 0.0, big)?;
+        if let Some(r) = o.rest_needed_s {
+            finite(r, f("rest_needed_s"), 0.0, big)?;
+        }
+        for (j, v) in o.variants.iter().enumerate() {
+            let g = |name: &str| format!("outcomes[{i}].variants[{j}].{name}");
+            if let Some(m) = v.minutes_to_exhaustion {
+                finite(m, g("minutes_to_exhaustion"), 0.0, big)?;
+            }
+            finite(v.minutes_followed, g("minutes_followed"), 0.0, big)?;
+            finite(v.lowest_capacity, g("lowest_capacity"), 0.0, 1.0)?;
+            if let Some(r) = v.rest_needed_s {
+                finite(r, g("rest_needed_s"), 0.0, big)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Merges shard results (`names` name them in messages) into one comparison. Every shard's
+/// numbers are checked as inputs first (see `check_shard_values`).
 pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError> {
     let Some((first_name, first)) = shards.first() else {
         return Err(MergeError::Missing {
@@ -745,6 +847,13 @@ pub fn merge(shards: &[(String, CompareShard)]) -> Result<Comparison, MergeError
             total: first.layouts_total,
             missing: Vec::new(),
         });
+    }
+    for (name, s) in shards {
+        check_shard_values(s).map_err(|(field, problem)| MergeError::Value {
+            file: name.clone(),
+            field,
+            problem,
+        })?;
     }
     let mut seen = vec![false; first.layouts_total];
     let mut outcomes = Vec::new();

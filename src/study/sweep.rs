@@ -734,12 +734,77 @@ fn nearest(members: &[Member], i: usize, candidates: &[usize]) -> Option<usize> 
     })
 }
 
-/// Merges shard results (name, shard) into one sweep.
+/// Checks every number of a shard read back from a file as an input: finite, within its range
+/// (capacities 0..1, fatigue and durations >= 0, the worker valid, indices within the worker
+/// count). The error names the field.
+fn check_shard_values(s: &SweepShard) -> Result<(), String> {
+    let big = f64::MAX;
+    let num = |v: f64, f: String, lo: f64, hi: f64| -> Result<(), String> {
+        if v.is_finite() && v >= lo && v <= hi {
+            Ok(())
+        } else {
+            Err(format!(
+                "{f}: must be a finite number within {lo}..{hi}, got {v}"
+            ))
+        }
+    };
+    if !(s.capacity_floor.is_finite() && s.capacity_floor > 0.0 && s.capacity_floor < 1.0) {
+        return Err(format!(
+            "capacity_floor: must be between 0 and 1, got {}",
+            s.capacity_floor
+        ));
+    }
+    if s.workers.len() > s.workers_total {
+        return Err(format!(
+            "workers: holds {} workers, more than workers_total ({})",
+            s.workers.len(),
+            s.workers_total
+        ));
+    }
+    for (i, w) in s.workers.iter().enumerate() {
+        let f = |name: &str| format!("workers[{i}].{name}");
+        if w.index >= s.workers_total {
+            return Err(format!(
+                "{}: must be below workers_total ({}), got {}",
+                f("index"),
+                s.workers_total,
+                w.index
+            ));
+        }
+        w.worker
+            .validate()
+            .map_err(|e| format!("{}: {e}", f("worker")))?;
+        num(w.total_u_min, f("total_u_min"), 0.0, big)?;
+        num(w.simulated_s, f("simulated_s"), 0.0, big)?;
+        num(w.lowest_capacity, f("lowest_capacity"), 0.0, 1.0)?;
+        if let Some(m) = w.minutes_to_exhaustion {
+            num(m, f("minutes_to_exhaustion"), 0.0, big)?;
+        }
+        num(w.minutes_followed, f("minutes_followed"), 0.0, big)?;
+        if let Some(e) = &w.exhaustion {
+            num(e.t_s, f("exhaustion.t_s"), 0.0, big)?;
+            num(e.load, f("exhaustion.load"), 0.0, big)?;
+        }
+        if let Some(c) = w.back_compression_max_n {
+            num(c, f("back_compression_max_n"), 0.0, big)?;
+        }
+        if let Some(r) = w.rest_needed_s {
+            num(r, f("rest_needed_s"), 0.0, big)?;
+        }
+    }
+    Ok(())
+}
+
+/// Merges shard results (name, shard) into one sweep; every shard's numbers are checked as
+/// inputs first.
 pub fn merge(shards: &[(String, SweepShard)]) -> Result<Sweep, SweepError> {
     let bad = |file: &str, problem: String| SweepError::Merge {
         file: file.to_string(),
         problem,
     };
+    for (name, s) in shards {
+        check_shard_values(s).map_err(|p| bad(name, p))?;
+    }
     let Some((_, first)) = shards.first() else {
         return Err(bad("(none)", "no shard results given".into()));
     };

@@ -16,12 +16,12 @@ impl std::fmt::Display for BadInput {
 }
 impl std::error::Error for BadInput {}
 
-/// The reader of standard output went away: end quietly.
+/// The reader of standard output went away (exit 2: the answer was not delivered).
 #[derive(Debug)]
 pub struct ClosedOutput;
 impl std::fmt::Display for ClosedOutput {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("standard output closed")
+        f.write_str("standard output closed (its reader went away): the answer was not delivered")
     }
 }
 impl std::error::Error for ClosedOutput {}
@@ -42,13 +42,47 @@ pub fn say(msg: std::fmt::Arguments) {
     let _ = e.write_fmt(msg).and_then(|_| e.write_all(b"\n"));
 }
 
-/// Maps a result to the exit code, printing the error.
+/// Whether standard output was closed when the program started (`>&-`). Rust's runtime puts
+/// /dev/null on a closed standard descriptor before `main`, so every write would succeed and the
+/// answer be lost; the descriptor is therefore looked at before that, by a constructor the
+/// loader runs before the runtime's start (Linux: `/proc/self/fd/1` missing while
+/// `/proc/self/fd` exists). Elsewhere it is never seen as closed.
+static STDOUT_CLOSED_AT_START: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
+#[cfg(target_os = "linux")]
+extern "C" fn probe_stdout() {
+    let closed = std::fs::symlink_metadata("/proc/self/fd").is_ok()
+        && std::fs::read_link("/proc/self/fd/1").is_err();
+    STDOUT_CLOSED_AT_START.store(closed, std::sync::atomic::Ordering::Relaxed);
+}
+
+// SAFETY: a plain function pointer in the initialiser list; the function touches only an
+// atomic and makes two system calls through std (no runtime state it needs is uninitialised).
+#[cfg(target_os = "linux")]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static PROBE_STDOUT: extern "C" fn() = probe_stdout;
+
+/// Refuses to start work whose answer goes to a standard output that was closed.
+pub fn check_stdout() -> anyhow::Result<()> {
+    if STDOUT_CLOSED_AT_START.load(std::sync::atomic::Ordering::Relaxed) {
+        return Err(bad(
+            "standard output is closed: the answer would be lost (redirect it to a file, or to /dev/null to discard it)",
+        ));
+    }
+    Ok(())
+}
+
+/// Maps a result to the exit code, printing the error. A closed standard output (a pipe whose
+/// reader left) is an error too: the answer was not delivered.
 pub fn exit(r: anyhow::Result<()>) -> ExitCode {
     match r {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) if e.downcast_ref::<ClosedOutput>().is_some() => ExitCode::SUCCESS,
         Err(e) => {
-            let bad_input = e.chain().any(|c| c.downcast_ref::<BadInput>().is_some());
+            let bad_input = e.chain().any(|c| {
+                c.downcast_ref::<BadInput>().is_some() || c.downcast_ref::<ClosedOutput>().is_some()
+            });
             say(format_args!("error: {e}"));
             if bad_input {
                 ExitCode::from(2)
@@ -59,9 +93,10 @@ pub fn exit(r: anyhow::Result<()>) -> ExitCode {
     }
 }
 
-/// Writes to standard output: a closed pipe ends the run quietly, any other failure (a full
-/// disk) is reported with exit 2.
+/// Writes to standard output: a closed one, a pipe whose reader left, or any other failure (a
+/// full disk) is reported with exit 2.
 pub fn stdout(bytes: &[u8]) -> anyhow::Result<()> {
+    check_stdout()?;
     let mut out = std::io::stdout().lock();
     let r = out.write_all(bytes).and_then(|_| out.flush());
     match r {

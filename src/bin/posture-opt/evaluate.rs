@@ -97,6 +97,7 @@ fn run_err(e: RunError) -> anyhow::Error {
 
 pub fn run(a: Args) -> anyhow::Result<()> {
     if a.stream {
+        crate::common::check_stdout()?;
         if let Some(p) = &a.recording {
             return Err(bad(format!(
                 "--stream reads samples from standard input; evaluate a file without --stream (got {})",

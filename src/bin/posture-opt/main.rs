@@ -1,6 +1,7 @@
 //! posture-opt command line: clap parses, the library does the work, one module per subcommand.
 //! Exit codes: 0 ok, 2 bad input (the message names the file, field, line or option), 1 internal
-//! failure. A closed standard output (a pipe whose reader left) ends the run quietly.
+//! failure. A standard output that is closed (`>&-`) or whose reader left (a pipe) is exit 2
+//! with a message: the answer was not delivered.
 
 mod common;
 mod compare;

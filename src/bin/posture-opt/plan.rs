@@ -21,6 +21,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> anyhow::Result<()> {
+    crate::common::check_stdout()?;
     let task = Task::from_file(&a.task).map_err(lib_err)?;
     let mut inputs: Vec<&std::path::Path> = vec![&a.task];
     inputs.extend(task.input_files.iter().map(|p| p.as_path()));

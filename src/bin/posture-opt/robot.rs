@@ -1,6 +1,6 @@
 //! `posture-opt robot`: the URDF of a worker and its strength table, written together.
 
-use crate::common::{Outputs, lib_err, parse_sex, stdout};
+use crate::common::{Outputs, bad, lib_err, parse_sex, stdout};
 use posture_opt::body::{Sex, StrengthTable, Worker, worker_urdf};
 use std::path::PathBuf;
 
@@ -16,9 +16,37 @@ pub struct Args {
     /// Strength percentile (1-99) of the worker's sex.
     #[arg(long, default_value_t = 50.0)]
     strength_percentile: f64,
-    /// Output URDF file (its strength table goes to NAME.strength.yaml beside it); stdout if absent.
+    /// Output URDF file NAME.urdf; its strength table is written beside it as NAME.strength.yaml
+    /// (refused if that file already exists, unless --force). Standard output if absent.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Overwrite an existing NAME.strength.yaml beside --out (a regular file only: a symlink
+    /// there is always refused).
+    #[arg(long, requires = "out")]
+    force: bool,
+}
+
+/// The strength table beside `--out` is a file the user did not name: refuse to replace one
+/// that exists (unless `--force`) and never write through a symlink there.
+fn check_sibling(sp: &std::path::Path, out: &std::path::Path, force: bool) -> anyhow::Result<()> {
+    let Ok(meta) = std::fs::symlink_metadata(sp) else {
+        return Ok(());
+    };
+    if meta.file_type().is_symlink() {
+        return Err(bad(format!(
+            "{}: is a symlink; the strength table written beside --out {} is never written through a symlink (remove it, or choose another --out)",
+            sp.display(),
+            out.display()
+        )));
+    }
+    if force {
+        return Ok(());
+    }
+    Err(bad(format!(
+        "{}: already exists; the strength table of --out {} is written there (remove it, choose another --out, or pass --force to overwrite it)",
+        sp.display(),
+        out.display()
+    )))
 }
 
 pub fn run(a: Args) -> anyhow::Result<()> {
@@ -32,6 +60,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     match &a.out {
         Some(path) => {
             let sp = StrengthTable::path_beside(path);
+            check_sibling(&sp, path, a.force)?;
             let mut out = Outputs::new(&[]);
             out.add("--out", &Some(path.clone()), || Ok(urdf.into_bytes()))?;
             out.add("strength table", &Some(sp.clone()), || {

@@ -69,7 +69,7 @@ fn parse_q(s: &str) -> anyhow::Result<Vec<(String, f64)>> {
 }
 
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let model = BodyModel::from_urdf_file(&a.robot).map_err(|e| bad(e.to_string()))?;
+    let model = BodyModel::from_urdf_file_for_statics(&a.robot).map_err(|e| bad(e.to_string()))?;
     let gravity = match &a.gravity {
         Some(g) => {
             let g = parse_vec3("--gravity", g, 3.0 * 9.81)?;

@@ -36,6 +36,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> anyhow::Result<()> {
+    crate::common::check_stdout()?;
     if a.merge {
         return merge(&a);
     }
@@ -79,16 +80,20 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             "planning {todo} workers; each takes seconds to a minute (two plans run at a time per core pair)"
         ));
     }
-    let out_lock = Mutex::new(());
+    // a line that could not be written (the reader left, a full disk): the run fails at the end
+    let out_lock: Mutex<Option<std::io::Error>> = Mutex::new(None);
     let stream = a.stream;
     let on_done = |w: &sweep::WorkerOutcome| {
         bar.inc(1);
         if stream {
-            let _g = out_lock.lock();
-            if let Ok(line) = serde_json::to_string(w) {
+            let mut failed = out_lock.lock().unwrap_or_else(|p| p.into_inner());
+            if failed.is_none()
+                && let Ok(line) = serde_json::to_string(w)
+            {
                 let mut o = std::io::stdout().lock();
-                let _ = writeln!(o, "{line}");
-                let _ = o.flush();
+                if let Err(e) = writeln!(o, "{line}").and_then(|_| o.flush()) {
+                    *failed = Some(e);
+                }
             }
         }
     };
@@ -110,7 +115,13 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         ));
     }
     if stream {
-        return Ok(());
+        return match out_lock.into_inner().unwrap_or_else(|p| p.into_inner()) {
+            None => Ok(()),
+            Some(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+                Err(anyhow::anyhow!(crate::common::ClosedOutput))
+            }
+            Some(e) => Err(bad(format!("cannot write to standard output: {e}"))),
+        };
     }
     if a.shard.is_some() {
         return print_json(&SweepShard::new(
