@@ -2377,7 +2377,7 @@ fn joint_names_with_commas_and_quotes_survive_the_recording_round_trip() {
 /// Item 9: a two-handed object placed inside the worker's trunk (its box spans x = −0.1..0.2 m and
 /// z = 0.55..1.45 m, where the pelvis and the trunk stand at x ≈ 0) is a collision of its phase.
 /// (A box only at chest height, z = 1.05..1.35 m, need not be: the optimiser does not see the held
-/// object (README, Limits), and the posture it converged to for that box, trunk folded forward
+/// object (docs/planner.md, limits), and the posture it converged to for that box, trunk folded forward
 /// 93° at the pelvis with the box above the back, happens to leave it.)
 #[test]
 fn a_held_object_inside_the_body_is_a_collision_of_its_phase() {

@@ -349,7 +349,7 @@ fn reference_best_plans_evaluate_to_the_reference_totals() {
 /// A good multi-start must do at least as well as the reference's typical local solve: on every
 /// task with sustainable reference optima, `plan --no-adapt --fatigue-only` is no worse than their
 /// median. (It failed on shelf and shelf_two_hands until the planner's cross-seeding rounds; the
-/// stricter target, within 1 % of the reference's best, is not met: see the README.)
+/// stricter target, within 1 % of the reference's best, is not met: see docs/results.md.)
 #[test]
 fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
     // The median is taken over the reference's whole-plan local optima that exhaust no muscle
