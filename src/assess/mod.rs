@@ -75,6 +75,7 @@ pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
     let meaning = meaning::meaning(task, plan);
     let rest = rest::rest_advice(task, plan, floor);
     let lifting = lifting::assess_lifts(task, plan).map(|r| r.map_err(|e| e.to_string()));
+    let uncertainty = uncertainty::sensitivity(task, plan, floor);
     let verdict = verdict::shift_verdict(
         task,
         plan,
@@ -82,6 +83,7 @@ pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
         &phases,
         &rest,
         lifting.as_ref().and_then(|l| l.as_ref().ok()),
+        uncertainty.as_ref().map(|u| u.exhausted_in),
     );
     Assessment {
         verdict,
@@ -94,7 +96,7 @@ pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
         lifting,
         meaning,
         rest,
-        uncertainty: uncertainty::sensitivity(task, plan, floor),
+        uncertainty,
         phases,
     }
 }

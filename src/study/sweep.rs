@@ -524,7 +524,6 @@ fn could_not_plan(plan: &Plan, problems: &[Problem]) -> Vec<String> {
 }
 
 fn outcome_of(task: &Task, plan: &Plan, index: usize, m: &Member, floor: f64) -> WorkerOutcome {
-    let task = task;
     let a = assess(task, plan, floor);
     let s = &plan.summary;
     let mut problems = Vec::new();
@@ -982,15 +981,15 @@ pub fn sweep_table(s: &Sweep) -> String {
                     w.could_not_plan.join("; ")
                 )
             } else if w.problems.is_empty() {
-                if w.lowest_capacity < s.capacity_floor || w.rest_needed_s.is_none() {
+                let how = if w.lowest_capacity < s.capacity_floor || w.rest_needed_s.is_none() {
                     format!(
-                        "can do it only by changing posture (capacity falls to {:.0} %)",
+                        "only by changing posture, capacity falls to {:.0} %",
                         100.0 * w.lowest_capacity
                     )
                 } else {
                     match w.minutes_to_exhaustion {
                         Some(m) => format!(
-                            "can do it (kept up, exhausted after {})",
+                            "kept up, exhausted after {}",
                             if m < 90.0 {
                                 format!("{m:.1} min")
                             } else {
@@ -998,18 +997,20 @@ pub fn sweep_table(s: &Sweep) -> String {
                             }
                         ),
                         None if w.exhaustion_verdict == "not_determined" => format!(
-                            "can do it (kept up: {})",
+                            "kept up: {}",
                             crate::assess::meaning::no_exhaustion_words(
                                 &w.exhaustion_verdict,
                                 w.minutes_followed
                             )
                         ),
-                        None if w.shift_status == crate::assess::verdict::Status::Acceptable => {
-                            "can do it (sustainable by every shift criterion)".to_string()
-                        }
-                        None => format!("can do it (shift verdict: {})", w.shift_verdict),
+                        None => "no group gives out".to_string(),
                     }
-                }
+                };
+                // the shift verdict's status and binding criterion (its details are the plan's)
+                format!(
+                    "can do it ({how}); shift: {}",
+                    w.shift_verdict.split(" — ").next().unwrap_or_default()
+                )
             } else {
                 format!(
                     "CANNOT: {}",

@@ -196,6 +196,7 @@ fn rule_order(a: &Value, b: &Value) -> Ordering {
         _ => (0, 0.0),
     };
     let status = |v: &Value| match v.as_str().unwrap() {
+        "not_applicable" => -1,
         "acceptable" => 0,
         "caution" => 1,
         "exceeded" => 2,

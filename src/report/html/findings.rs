@@ -69,7 +69,7 @@ pub fn verdict(plan: &Plan, a: &Assessment) -> Finding {
     }
     let v = &a.verdict;
     let level = match v.status {
-        Status::Acceptable => Level::Ok,
+        Status::NotApplicable | Status::Acceptable => Level::Ok,
         Status::Caution | Status::NotDetermined => Level::Warn,
         Status::Exceeded => Level::Bad,
     };
@@ -99,7 +99,7 @@ pub fn criteria_finding(a: &Assessment) -> Finding {
         })
         .collect();
     let level = match a.verdict.status {
-        Status::Acceptable => Level::Ok,
+        Status::NotApplicable | Status::Acceptable => Level::Ok,
         Status::Caution | Status::NotDetermined => Level::Warn,
         Status::Exceeded => Level::Bad,
     };
