@@ -548,11 +548,18 @@ fn jonsson(task: &Task, loads: &[Vec<f64>], id: &'static str) -> Criterion {
             };
             (
                 status,
-                format!(
-                    "the {}' {what} is {:.1} %MVC, {against}",
-                    task.half_joints[h].group,
-                    100.0 * v
-                ),
+                if v < 5e-4 {
+                    // no group is worse than another: name none
+                    format!(
+                        "every shoulder, arm, wrist and neck group's {what} is 0.0 %MVC, {against}"
+                    )
+                } else {
+                    format!(
+                        "the {}' {what} is {:.1} %MVC, {against}",
+                        task.half_joints[h].group,
+                        100.0 * v
+                    )
+                },
             )
         }
     };
