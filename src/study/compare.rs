@@ -602,34 +602,24 @@ pub fn verdict(o: &LayoutOutcome) -> String {
     if !o.feasible {
         return format!("cannot be done: {}", o.problems.join("; "));
     }
-    match &o.exhaustion {
-        Some(e) => e.describe(),
-        None => match o.minutes_to_exhaustion {
-            Some(m) => format!(
-                "no exhaustion in the task; kept up, the first group gives out after {:.1} h; lowest capacity {:.0} % ({})",
-                m / 60.0,
-                100.0 * o.lowest_capacity,
-                o.lowest_capacity_group
-            ),
-            None if o.exhaustion_verdict == "not_determined" => format!(
-                "no exhaustion in the task; kept up, {}; lowest capacity {:.0} % ({})",
-                no_exhaustion_words(&o.exhaustion_verdict, o.minutes_followed),
-                100.0 * o.lowest_capacity,
-                o.lowest_capacity_group
-            ),
-            None if o.shift_status == crate::assess::verdict::Status::Acceptable => format!(
-                "sustainable at this pace by every shift criterion; lowest capacity {:.0} % ({})",
-                100.0 * o.lowest_capacity,
-                o.lowest_capacity_group
-            ),
-            None => format!(
-                "no muscle group gives out at this pace, but {}; lowest capacity {:.0} % ({})",
-                o.shift_verdict,
-                100.0 * o.lowest_capacity,
-                o.lowest_capacity_group
-            ),
-        },
+    if let Some(e) = &o.exhaustion {
+        return e.describe();
     }
+    // the shift verdict leads; the fatigue figures follow
+    let fatigue = match o.minutes_to_exhaustion {
+        Some(m) => format!("kept up, the first group gives out after {:.1} h", m / 60.0),
+        None if o.exhaustion_verdict == "not_determined" => format!(
+            "kept up, {}",
+            no_exhaustion_words(&o.exhaustion_verdict, o.minutes_followed)
+        ),
+        None => "no muscle group gives out at this pace".to_string(),
+    };
+    format!(
+        "{}; fatigue: {fatigue}; lowest capacity {:.0} % ({})",
+        o.shift_verdict,
+        100.0 * o.lowest_capacity,
+        o.lowest_capacity_group
+    )
 }
 
 /// Plans and assesses layouts `indices` of `tasks` (in parallel).
