@@ -74,12 +74,8 @@ pub fn verdict(plan: &Plan, a: &Assessment) -> Finding {
         Status::Exceeded => Level::Bad,
     };
     let head = capitalise(&esc(&v.headline));
-    let fatigue = if v.binding == Some("fatigue_model") {
-        String::new()
-    } else {
-        format!(" The fatigue model: {}.", esc(&m.words))
-    };
-    Finding::new(level, format!("{head}.{fatigue} {left}"))
+    // the fatigue model's own words are in the criteria list; the box adds the capacity figures
+    Finding::new(level, format!("{head}. {left}"))
 }
 
 /// The shift criteria one by one, as the verdict weighed them.
@@ -504,8 +500,8 @@ pub fn findings(
                 let li = r.lifting_index;
                 f.push(Finding::new(
                     match li {
-                        Some(x) if x > 3.0 => Level::Bad,
-                        Some(x) if x > 1.0 => Level::Warn,
+                        // as the shift verdict's lifting-index criterion: redesign above 1
+                        Some(x) if x > 1.0 => Level::Bad,
                         Some(_) => Level::Ok,
                         None => Level::Bad,
                     },
@@ -519,7 +515,7 @@ pub fn findings(
                             if x > 3.0 {
                                 " — most workers are at increased risk"
                             } else if x > 1.0 {
-                                " — some workers are at increased risk"
+                                " — some workers are at increased risk; redesign the lift"
                             } else {
                                 ""
                             }
@@ -533,13 +529,7 @@ pub fn findings(
             }
             if let Some(c) = l.composite.as_ref().and_then(|c| c.cli) {
                 f.push(Finding::new(
-                    if c > 3.0 {
-                        Level::Bad
-                    } else if c > 1.0 {
-                        Level::Warn
-                    } else {
-                        Level::Ok
-                    },
+                    if c > 1.0 { Level::Bad } else { Level::Ok },
                     format!("NIOSH composite lifting index {}.", num(c, 2)),
                 ));
             }
