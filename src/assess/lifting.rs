@@ -3,8 +3,8 @@
 //! For each declared lift (origin and destination phases): H is the horizontal distance from the
 //! mid-point between the ankles to the point below the mid-point of the hands, V the hands'
 //! mid-point height above the floor, A the angle between the line from the ankles' mid-point to
-//! the point below the hands and the worker's forward direction (the feet's, +x turned by the
-//! stance's toe-out: the mid-sagittal line of the neutral posture), D the vertical travel.
+//! the point below the hands and the worker's forward direction (the feet's mean heading in
+//! that phase: the mid-sagittal line of the neutral posture), D the vertical travel.
 //! The frequency is one lift per cycle; the duration category follows from the task's length;
 //! the load is the heavier of the two phases' hand loads. Several lifts give a composite
 //! lifting index.
@@ -13,6 +13,7 @@ use super::niosh::{
     CompositeResult, Coupling, EquationForm, Lift, LiftGeometry, LiftResult, NioshError,
     WorkDuration, assess_lift, composite,
 };
+use crate::body::stance::{FeetNow, wrap_pi};
 use crate::plan::posture::PostureWork;
 use crate::plan::task::CouplingName;
 use crate::plan::{Plan, Task};
@@ -39,19 +40,24 @@ fn geometry(task: &Task, plan: &Plan, pw: &mut PostureWork, p: usize) -> Option<
         return None;
     }
     let mid = hands.iter().fold(Vector3::zeros(), |a, b| a + b) / hands.len() as f64;
-    // the feet point forward (+x; a toe-out turns them symmetrically), so the mid-sagittal line
-    // of the neutral posture is the x axis through the ankles' mid-point
-    let ankles = match &task.stance {
+    // the mid-sagittal line of the neutral posture runs through the ankles' mid-point along the
+    // feet's mean heading (where the feet stand in this phase: a worker who turns his feet
+    // toward the load lifts it without asymmetry)
+    let (ankles, heading) = match &task.stance {
         Some(st) => {
-            (st.world_from_foot[0].translation.vector + st.world_from_foot[1].translation.vector)
-                / 2.0
+            let ankle = |i: usize| {
+                pw.data
+                    .link_point(&task.model, st.feet[i].link, &Vector3::zeros())
+            };
+            let feet = FeetNow::at(&task.model, &pw.data, &st.feet);
+            ((ankle(0) + ankle(1)) / 2.0, feet.geometry().heading_rad)
         }
-        None => Vector3::zeros(),
+        None => (Vector3::zeros(), 0.0),
     };
     let d = Vector3::new(mid.x - ankles.x, mid.y - ankles.y, 0.0);
     let h = d.norm();
     let a = if h > 1e-9 {
-        d.y.atan2(d.x).to_degrees()
+        wrap_pi(d.y.atan2(d.x) - heading).to_degrees()
     } else {
         0.0
     };

@@ -77,17 +77,269 @@ impl Foot {
     }
 }
 
-/// Where the two feet stand: their target poses (sole centre frames, z up) and the support
-/// polygon. Index 0 is the left foot, 1 the right.
+/// Where the two feet stand: their nominal poses (sole centre frames, z up), the support
+/// polygon there, and — when the planner places the feet — where they may go. Index 0 is the
+/// left foot, 1 the right.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Stance {
     pub feet: [Foot; 2],
-    /// World pose of each foot's link frame when standing (flat, on the floor).
+    /// World pose of each foot's link frame in the nominal stance (flat, on the floor): the
+    /// feet's pose when they are fixed, and at rest.
     pub world_from_foot: [Isometry3<f64>; 2],
-    /// Support polygon (convex hull of both soles), counter-clockwise, world x-y \[m\].
+    /// Support polygon of the nominal stance (convex hull of both soles), counter-clockwise,
+    /// world x-y \[m\].
     pub support_polygon_m: Vec<Vector2<f64>>,
     /// The polygon's edges as (outward unit normal, offset), computed once.
     edges_m: Vec<(Vector2<f64>, f64)>,
+    /// Where the feet may be placed; `None`: the feet stay at `world_from_foot`.
+    pub placement: Option<Placement>,
+}
+
+/// Where the planner may place the feet: a standing area on the floor and the ranges of a
+/// human stance (see `docs/worker.md`, "Stepping and turning", for the sources).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placement {
+    /// The standing area: a convex polygon on the floor, counter-clockwise \[m\]. Every sole
+    /// corner stays inside it.
+    pub area_m: Vec<Vector2<f64>>,
+    area_edges_m: Vec<(Vector2<f64>, f64)>,
+    /// Lateral distance between the sole centres across the feet's mean heading \[m\].
+    pub width_range_m: (f64, f64),
+    /// Largest fore-aft offset between the sole centres along the mean heading \[m\].
+    pub stagger_max_m: f64,
+    /// The left foot's yaw minus the right's \[rad\] (toe-out positive).
+    pub relative_yaw_range_rad: (f64, f64),
+}
+
+impl Placement {
+    /// A placement in the convex hull of `area_m` (given in either orientation).
+    pub fn new(
+        area_m: &[Vector2<f64>],
+        width_range_m: (f64, f64),
+        stagger_max_m: f64,
+        relative_yaw_range_rad: (f64, f64),
+    ) -> Self {
+        let area = convex_hull(area_m.to_vec());
+        let area_edges_m = polygon_edges(&area);
+        Placement {
+            area_m: area,
+            area_edges_m,
+            width_range_m,
+            stagger_max_m,
+            relative_yaw_range_rad,
+        }
+    }
+
+    /// The area's edges as (outward unit normal n, offset d): inside means `n·p ≤ d`.
+    #[inline]
+    pub fn area_edges(&self) -> impl Iterator<Item = (Vector2<f64>, f64)> + '_ {
+        self.area_edges_m.iter().copied()
+    }
+
+    /// Largest violation of the placement by `feet` \[m\] (0 when every bound holds): a sole
+    /// corner outside the area, the width, stagger or relative yaw (as the arc at the sole's
+    /// half-length) outside their ranges.
+    pub fn violation_m(&self, feet: &FeetNow, half_length_m: f64) -> f64 {
+        let mut v = 0.0f64;
+        for corners in &feet.corner_m {
+            for c in corners {
+                for (n, d) in self.area_edges() {
+                    v = v.max(n.dot(c) - d);
+                }
+            }
+        }
+        let g = feet.geometry();
+        v = v
+            .max(self.width_range_m.0 - g.width_m)
+            .max(g.width_m - self.width_range_m.1)
+            .max(g.stagger_m.abs() - self.stagger_max_m)
+            .max(half_length_m * (self.relative_yaw_range_rad.0 - g.relative_yaw_rad))
+            .max(half_length_m * (g.relative_yaw_rad - self.relative_yaw_range_rad.1));
+        v.max(0.0)
+    }
+}
+
+/// The feet where a posture puts them (floor projections): sole centres, yaws, sole corners.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeetNow {
+    /// Sole centres (left, right), world \[m\].
+    pub sole_center_m: [Vector2<f64>; 2],
+    /// Yaw of each foot link's x axis about the vertical \[rad\].
+    pub yaw_rad: [f64; 2],
+    /// Each sole's corners, world \[m\], in the sole's axes' order (+x+y, +x−y, −x−y, −x+y).
+    pub corner_m: [[Vector2<f64>; 4]; 2],
+}
+
+/// The corner offsets of a sole in its link's axes, as multiples of (half-length, half-width).
+pub const SOLE_CORNERS: [(f64, f64); 4] = [(1.0, 1.0), (1.0, -1.0), (-1.0, -1.0), (-1.0, 1.0)];
+
+/// Width, stagger and relative yaw of two feet, in the frame of their mean heading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StanceGeometry {
+    /// Mean heading of the feet \[rad\] (the right foot's yaw plus half the relative yaw).
+    pub heading_rad: f64,
+    /// Left sole centre minus right, across the heading (to the left positive) \[m\].
+    pub width_m: f64,
+    /// Left sole centre minus right, along the heading (left ahead positive) \[m\].
+    pub stagger_m: f64,
+    /// Left yaw minus right yaw, wrapped to (−π, π] \[rad\].
+    pub relative_yaw_rad: f64,
+}
+
+impl FeetNow {
+    /// The feet at the forward kinematics in `data`.
+    pub fn at(model: &BodyModel, data: &StaticsData, feet: &[Foot; 2]) -> Self {
+        let mut out = FeetNow {
+            sole_center_m: [Vector2::zeros(); 2],
+            yaw_rad: [0.0; 2],
+            corner_m: [[Vector2::zeros(); 4]; 2],
+        };
+        for (i, f) in feet.iter().enumerate() {
+            let (rot, pos) = data.link_pose(model, f.link);
+            let c = pos + rot * f.sole_center_in_link_m;
+            out.sole_center_m[i] = Vector2::new(c.x, c.y);
+            out.yaw_rad[i] = rot[(1, 0)].atan2(rot[(0, 0)]);
+            for (k, (sx, sy)) in SOLE_CORNERS.iter().enumerate() {
+                let p = pos
+                    + rot
+                        * (f.sole_center_in_link_m
+                            + Vector3::new(sx * f.half_length_m, sy * f.half_width_m, 0.0));
+                out.corner_m[i][k] = Vector2::new(p.x, p.y);
+            }
+        }
+        out
+    }
+
+    /// Width, stagger and relative yaw.
+    pub fn geometry(&self) -> StanceGeometry {
+        let rel = wrap_pi(self.yaw_rad[0] - self.yaw_rad[1]);
+        let heading = self.yaw_rad[1] + rel / 2.0;
+        let d = self.sole_center_m[0] - self.sole_center_m[1];
+        let (s, c) = heading.sin_cos();
+        StanceGeometry {
+            heading_rad: wrap_pi(heading),
+            width_m: -s * d.x + c * d.y,
+            stagger_m: c * d.x + s * d.y,
+            relative_yaw_rad: rel,
+        }
+    }
+
+    /// The support polygon: the convex hull of both soles.
+    pub fn support(&self) -> SupportHull {
+        let mut pts = [(Vector2::zeros(), 0u8); 8];
+        for i in 0..2 {
+            for k in 0..4 {
+                pts[4 * i + k] = (self.corner_m[i][k], (4 * i + k) as u8);
+            }
+        }
+        SupportHull::of(&self.corner_m, &mut pts)
+    }
+}
+
+/// An angle wrapped to (−π, π].
+pub fn wrap_pi(a: f64) -> f64 {
+    let t = std::f64::consts::TAU;
+    let w = a - t * (a / t).round();
+    if w <= -std::f64::consts::PI { w + t } else { w }
+}
+
+/// The convex hull of the two soles' eight corners, counter-clockwise, as corner indices
+/// (`4 × foot + corner`) — so that its edges' motion can be followed to the feet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SupportHull {
+    pub vertex: [u8; 8],
+    pub len: usize,
+    pub corner_m: [[Vector2<f64>; 4]; 2],
+}
+
+impl SupportHull {
+    fn of(corner_m: &[[Vector2<f64>; 4]; 2], pts: &mut [(Vector2<f64>, u8); 8]) -> Self {
+        pts.sort_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
+        let cross = |o: &Vector2<f64>, a: &Vector2<f64>, b: &Vector2<f64>| {
+            (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+        };
+        let mut hull = [0u8; 17];
+        let mut pos = [Vector2::zeros(); 17];
+        let mut n = 0usize;
+        for &(p, id) in pts.iter() {
+            while n >= 2 && cross(&pos[n - 2], &pos[n - 1], &p) <= 1e-15 {
+                n -= 1;
+            }
+            pos[n] = p;
+            hull[n] = id;
+            n += 1;
+        }
+        let lower = n + 1;
+        for &(p, id) in pts.iter().rev().skip(1) {
+            while n >= lower && cross(&pos[n - 2], &pos[n - 1], &p) <= 1e-15 {
+                n -= 1;
+            }
+            pos[n] = p;
+            hull[n] = id;
+            n += 1;
+        }
+        n -= 1; // the first point again
+        let mut vertex = [0u8; 8];
+        let len = n.min(8);
+        vertex[..len].copy_from_slice(&hull[..len]);
+        SupportHull {
+            vertex,
+            len,
+            corner_m: *corner_m,
+        }
+    }
+
+    /// World position of hull vertex `v` \[m\].
+    #[inline]
+    pub fn point(&self, v: usize) -> Vector2<f64> {
+        let id = self.vertex[v] as usize;
+        self.corner_m[id / 4][id % 4]
+    }
+
+    /// The edges as (start corner id, end corner id, outward unit normal n, offset d): inside
+    /// means `n·p ≤ d`. Degenerate (zero-length) edges are skipped.
+    pub fn edges(&self) -> impl Iterator<Item = (usize, usize, Vector2<f64>, f64)> + '_ {
+        (0..self.len).filter_map(move |i| {
+            let j = (i + 1) % self.len;
+            let (a, b) = (self.point(i), self.point(j));
+            let t = b - a;
+            let l = t.norm();
+            (l > 1e-12).then(|| {
+                let t = t / l;
+                let n = Vector2::new(t.y, -t.x);
+                (
+                    self.vertex[i] as usize,
+                    self.vertex[j] as usize,
+                    n,
+                    n.dot(&a),
+                )
+            })
+        })
+    }
+
+    /// Signed distance \[m\] of `p` from the hull's boundary: positive inside.
+    pub fn margin_m(&self, p: &Vector2<f64>) -> f64 {
+        self.edges()
+            .map(|(_, _, n, d)| d - n.dot(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The hull's vertices, counter-clockwise \[m\].
+    pub fn polygon_m(&self) -> Vec<Vector2<f64>> {
+        (0..self.len).map(|v| self.point(v)).collect()
+    }
+}
+
+/// Outward unit normals and offsets of a counter-clockwise convex polygon's edges.
+fn polygon_edges(v: &[Vector2<f64>]) -> Vec<(Vector2<f64>, f64)> {
+    (0..v.len())
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let t = (b - a).normalize();
+            let n = Vector2::new(t.y, -t.x);
+            (n, n.dot(&a))
+        })
+        .collect()
 }
 
 impl Stance {
@@ -109,20 +361,20 @@ impl Stance {
             }
         }
         let v = convex_hull(corners);
-        let edges_m = (0..v.len())
-            .map(|i| {
-                let (a, b) = (v[i], v[(i + 1) % v.len()]);
-                let t = (b - a).normalize();
-                let n = Vector2::new(t.y, -t.x);
-                (n, n.dot(&a))
-            })
-            .collect();
+        let edges_m = polygon_edges(&v);
         Stance {
             feet,
             world_from_foot,
             support_polygon_m: v,
             edges_m,
+            placement: None,
         }
+    }
+
+    /// The same nominal stance with the feet placed by the planner within `placement`.
+    pub fn with_placement(mut self, placement: Placement) -> Self {
+        self.placement = Some(placement);
+        self
     }
 
     /// Signed distance \[m\] of point `p` from the support polygon's boundary: positive inside.
@@ -186,6 +438,10 @@ pub struct GroundReaction {
     pub margin_m: f64,
     /// False when the loads lift the body (no upward reaction): no stance can hold it.
     pub supported: bool,
+    /// Where the feet stand.
+    pub feet: FeetNow,
+    /// The support polygon of the feet where they stand.
+    pub support: SupportHull,
 }
 
 /// The non-ground loads' resultant about the world origin: gravity on the whole body (after
@@ -224,6 +480,8 @@ pub fn ground_reaction(
     };
     let (cl, cr) = (sole(0), sole(1));
     let (cl2, cr2) = (Vector2::new(cl.x, cl.y), Vector2::new(cr.x, cr.y));
+    let feet_now = FeetNow::at(model, data, &stance.feet);
+    let support = feet_now.support();
     let supported = fg.z > 1e-9 * f_ext.norm().max(1.0);
     let p = if supported {
         Vector2::new(-mg.y / fg.z, mg.x / fg.z)
@@ -263,8 +521,15 @@ pub fn ground_reaction(
         free_moment_nm: [shares[0] * t_z, shares[1] * t_z],
         cop_total_m: p,
         left_share: s,
-        margin_m: stance.margin_m(&p),
+        // fixed feet stand on the nominal polygon; placed ones where they are
+        margin_m: if stance.placement.is_some() {
+            support.margin_m(&p)
+        } else {
+            stance.margin_m(&p)
+        },
         supported,
+        feet: feet_now,
+        support,
     }
 }
 

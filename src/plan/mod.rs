@@ -9,6 +9,7 @@
 //! * [`planner`]: coordination passes across phases, the time loop with re-planning, baselines;
 //! * [`result`]: the plan document;
 //! * [`held`]: the held object against the worker's own body (a collision of its phase);
+//! * [`stepping`]: the feet's poses, the steps between phases, their cost and words;
 //! * [`reach`]: when a target is provably out of reach (beyond the kinematic chain's length).
 
 pub mod held;
@@ -21,6 +22,7 @@ pub mod reach;
 pub mod result;
 pub mod search;
 pub mod sqp;
+pub mod stepping;
 pub mod task;
 
 pub use planner::{PlanError, PlanOptions, Planner, plan_task, plan_task_with};

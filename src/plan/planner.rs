@@ -43,7 +43,9 @@ use super::qp::QpError;
 use super::result::*;
 use super::search::{PhaseSolver, PhaseSpec, SearchStats};
 use super::sqp::{SqpOutcome, SqpSettings};
+use super::stepping::{self, Stepping};
 use super::task::Task;
+use crate::body::stance::FeetNow;
 use crate::fatigue::{MaParams, MaState};
 use nalgebra::Vector3;
 
@@ -171,12 +173,20 @@ impl<'t> Planner<'t> {
             discomfort_weight: 1.0,
             shape: Shape::of(task),
             capacity: &ones,
+            gaze_m: None,
         };
         let mut q_rest = vec![0.0; task.model.nq()];
         let zero = q_rest.clone();
-        let (rest_solve, _) = solver
-            .solve(&spec, &mut SquaredLoads, Some(&zero), false, &mut q_rest)
-            .map_err(qp_err("rest"))?;
+        // the worker rests on the nominal stance, wherever the phases place the feet
+        let (rest_solve, _) = if task.stance.as_ref().is_some_and(|s| s.placement.is_some()) {
+            let fixed = task.with_fixed_feet();
+            PhaseSolver::new(&fixed, sqp)
+                .map_err(qp_err("rest"))?
+                .solve(&spec, &mut SquaredLoads, Some(&zero), false, &mut q_rest)
+        } else {
+            solver.solve(&spec, &mut SquaredLoads, Some(&zero), false, &mut q_rest)
+        }
+        .map_err(qp_err("rest"))?;
         solver.q_rest = q_rest.clone();
         let mut rest_loads = vec![0.0; nh];
         solver.pw.statics(task, &q_rest, &[Vector3::zeros(); 2]);
@@ -257,7 +267,83 @@ impl<'t> Planner<'t> {
         t.objective.discomfort_weight * self.groups[g].len() as f64 / t.phases.len() as f64
     }
 
-    /// The whole objective for postures `gp`: fatigue J plus the groups' weighted discomfort.
+    /// The feet of posture `q` (kinematics only), for a standing body.
+    fn feet_at(&mut self, q: &[f64]) -> Option<FeetNow> {
+        self.solver.pw.statics(self.task, q, &[Vector3::zeros(); 2]);
+        stepping::feet_of(self.task, &self.solver.pw)
+    }
+
+    /// The step cost's weight: the task's, when the planner places the feet and the objective
+    /// is not fatigue alone.
+    fn step_weight(&self, fatigue_only: bool) -> f64 {
+        let placed = self
+            .task
+            .stance
+            .as_ref()
+            .is_some_and(|s| s.placement.is_some());
+        if fatigue_only || !placed {
+            0.0
+        } else {
+            self.task.objective.step_weight
+        }
+    }
+
+    /// The step cost of group `g` against its neighbouring states in the cycle (the phase
+    /// before and after each of its phases, the rest stance at the cycle's ends), with the
+    /// other groups' postures `gp` held.
+    fn stepping_for(&mut self, g: usize, gp: &GroupPostures, fatigue_only: bool) -> Stepping {
+        let weight = self.step_weight(fatigue_only);
+        if weight == 0.0 {
+            return Stepping::default();
+        }
+        let rest = self.solver.q_rest.clone();
+        let np = self.task.phases.len();
+        let group_of = |p: usize| self.groups.iter().position(|m| m.contains(&p));
+        let members = self.groups[g].clone();
+        let mut nbs: Vec<Option<usize>> = Vec::new(); // None: rest
+        for &p in &members {
+            let prev = if p == 0 { None } else { group_of(p - 1) };
+            let next = if p + 1 == np { None } else { group_of(p + 1) };
+            for nb in [prev, next] {
+                if nb != Some(g) {
+                    nbs.push(nb);
+                }
+            }
+        }
+        let mut neighbours = Vec::new();
+        for nb in nbs {
+            let q = match nb {
+                Some(h) => gp.q[h].clone(),
+                None => rest.clone(),
+            };
+            if let Some(f) = self.feet_at(&q) {
+                neighbours.push((f, 1.0));
+            }
+        }
+        Stepping { weight, neighbours }
+    }
+
+    /// The step cost of a whole cycle with postures `gp`.
+    fn cycle_step_cost(&mut self, gp: &GroupPostures, fatigue_only: bool) -> f64 {
+        let weight = self.step_weight(fatigue_only);
+        if weight == 0.0 {
+            return 0.0;
+        }
+        let rest = self.solver.q_rest.clone();
+        let Some(rest_feet) = self.feet_at(&rest) else {
+            return 0.0;
+        };
+        let mut feet = Vec::with_capacity(self.task.phases.len());
+        for p in 0..self.task.phases.len() {
+            let g = self.groups.iter().position(|m| m.contains(&p)).unwrap_or(0);
+            let q = gp.q[g].clone();
+            feet.extend(self.feet_at(&q));
+        }
+        stepping::cycle_cost(self.task, weight, &rest_feet, &feet)
+    }
+
+    /// The whole objective for postures `gp`: fatigue J plus the groups' weighted discomfort
+    /// and the cycle's steps.
     fn total_objective(
         &mut self,
         gp: &GroupPostures,
@@ -294,7 +380,7 @@ impl<'t> Planner<'t> {
                     * self.solver.discomfort.value(&gp.q[g], Shape::of(self.task))
             })
             .sum();
-        (j, d)
+        (j, d + self.cycle_step_cost(gp, fatigue_only))
     }
 
     /// Optimises every group's posture for the state and horizon; `multistart` searches the
@@ -337,6 +423,7 @@ impl<'t> Planner<'t> {
                     discomfort_weight: self.group_weight(g, fatigue_only),
                     shape: Shape::of(t),
                     capacity: &capacity,
+                    gaze_m: rep.gaze_m,
                 };
                 let start = gp.q[g].clone();
                 let mut q = start.clone();
@@ -349,6 +436,7 @@ impl<'t> Planner<'t> {
                     self.solver.extra_seeds = vec![h[members[0]].clone()];
                 }
                 self.solver.pool.clear();
+                self.solver.stepping = self.stepping_for(g, gp, fatigue_only);
                 let (out, stats) = self
                     .solver
                     .solve(&spec, &mut cost, Some(&start), global || cross, &mut q)
@@ -507,9 +595,19 @@ impl<'t> Planner<'t> {
                 discomfort_weight: weight,
                 shape,
                 capacity: &big,
+                gaze_m: rep.gaze_m,
             };
             let mut cost = cost_of();
             let mut q = gp.q[g].clone();
+            // steps from and back to the rest stance
+            let weight = self.step_weight(false);
+            self.solver.stepping = match self.feet_at(&self.solver.q_rest.clone()) {
+                Some(f) if weight > 0.0 => Stepping {
+                    weight,
+                    neighbours: vec![(f, 2.0)],
+                },
+                _ => Stepping::default(),
+            };
             let (out, stats) = self
                 .solver
                 .solve(&spec, cost.as_mut(), None, false, &mut q)
@@ -931,6 +1029,19 @@ impl<'t> Planner<'t> {
         let t = self.task;
         let d = Discomfort::new(t);
         let arms = super::held::arm_bodies(t);
+        // the feet of every phase, and of the rest stance before the first
+        let rest = self.solver.q_rest.clone();
+        let mut before = self.feet_at(&rest);
+        let mut feet = Vec::with_capacity(t.phases.len());
+        for p in 0..t.phases.len() {
+            let g = self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0);
+            let now = self.feet_at(&gp.q[g].clone());
+            feet.push(match (&before, &now) {
+                (Some(b), Some(n)) => Some(stepping::describe(b, n)),
+                _ => None,
+            });
+            before = now;
+        }
         (0..t.phases.len())
             .map(|p| {
                 let g = self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0);
@@ -999,6 +1110,7 @@ impl<'t> Planner<'t> {
                         .balance_margin_m
                         .is_finite()
                         .then_some(sol.balance_margin_m),
+                    feet: feet[p].clone(),
                     most_loaded: loaded,
                     at_limits: d
                         .near_limits(q, AT_LIMIT_FRACTION)

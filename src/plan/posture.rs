@@ -3,16 +3,17 @@
 //! the centre of pressure and the clearances to obstacles and to the body itself — and their
 //! first derivatives for the optimiser.
 
-use super::task::Task;
+use super::stepping::yaw_rate;
+use super::task::{GAZE_CONE_HALF_ANGLE_DEG, Head, Task};
 use crate::body::stance::{
-    GroundReaction, cop_jacobian, foot_loads, ground_reaction, settle_internal_force,
+    GroundReaction, SOLE_CORNERS, cop_jacobian, foot_loads, ground_reaction, settle_internal_force,
 };
 use crate::body::statics::{
     apply_loads, forward_kinematics, holding_torque_derivative, mass_moments,
 };
 use crate::body::{JointKind, PointLoad, StaticsData};
 use crate::workstation::Clearance;
-use nalgebra::{DMatrix, Isometry3, Matrix2xX, Matrix3, Matrix3xX, Vector3};
+use nalgebra::{DMatrix, Isometry3, Matrix2xX, Matrix3, Matrix3xX, Vector2, Vector3};
 
 /// A body capsule: link, segment end points in the link frame, radius.
 #[derive(Debug, Clone, Copy)]
@@ -231,6 +232,10 @@ pub struct PostureWork {
     /// Scratch of the feet's internal wrench (3×nq).
     settle_g: Matrix3xX<f64>,
     pub jac2: Matrix3xX<f64>,
+    /// Scratch of [`PostureWork::ground_rows`] (3×nq each, and nq).
+    jac3: Matrix3xX<f64>,
+    jac4: Matrix3xX<f64>,
+    row: Vec<f64>,
     pub cop_jac: Matrix2xX<f64>,
     /// ∂τ/∂q of the last [`PostureWork::linearise`].
     pub dtau_dq: DMatrix<f64>,
@@ -240,6 +245,30 @@ pub struct PostureWork {
     scratch: Vec<Clearance>,
     /// Whether each joint has muscles.
     actuated: Vec<bool>,
+}
+
+/// What a row of [`PostureWork::geometry_rows`] keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Row {
+    Gaze,
+    Balance,
+    Placement,
+}
+
+/// Most rows [`PostureWork::geometry_rows`] gives for `task`: the gaze row, the support hull's
+/// edges (at most eight), and with placed feet eight sole corners per edge of the standing area
+/// and six stance rows.
+pub fn geometry_row_count(task: &Task) -> usize {
+    let gaze = usize::from(task.head.is_some());
+    gaze + match &task.stance {
+        None => 0,
+        Some(st) => {
+            8 + st
+                .placement
+                .as_ref()
+                .map_or(0, |p| 8 * p.area_edges().count() + 6)
+        }
+    }
 }
 
 /// Finite-difference step for ∂τ/∂q on standing bodies \[rad or m\].
@@ -258,6 +287,9 @@ impl PostureWork {
             jac: Matrix3xX::zeros(nq),
             settle_g: Matrix3xX::zeros(nq),
             jac2: Matrix3xX::zeros(nq),
+            jac3: Matrix3xX::zeros(nq),
+            jac4: Matrix3xX::zeros(nq),
+            row: vec![0.0; nq],
             cop_jac: Matrix2xX::zeros(nq),
             dtau_dq: DMatrix::zeros(nq, nq),
             tau_plus: vec![0.0; nq],
@@ -371,15 +403,198 @@ impl PostureWork {
         );
     }
 
+    /// The gaze row's value `cos θ_max − s·d̂` after the forward kinematics, with the eye point,
+    /// the line of sight `s` and the unit direction `d̂` to `target`.
+    pub fn gaze(
+        &self,
+        task: &Task,
+        head: &Head,
+        target: &Vector3<f64>,
+    ) -> (f64, Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        let (rot, _) = self.data.link_pose(&task.model, head.link);
+        let eye = self
+            .data
+            .link_point(&task.model, head.link, &head.eye_in_link_m);
+        let s = rot * head.sight_in_link;
+        let d = (target - eye).normalize();
+        let cos_max = GAZE_CONE_HALF_ANGLE_DEG.to_radians().cos();
+        (cos_max - s.dot(&d), eye, s, d)
+    }
+
     /// Position and orientation errors of foot `i` against its stance pose: (target − actual
     /// position, rotation vector taking the actual orientation to the target), world axes.
+    ///
+    /// When the planner places the feet, the target is the nominal pose moved over the floor to
+    /// where the foot stands now (its position and yaw): only the height and the tilts are
+    /// errors, and the other three components are zero.
     pub fn foot_error(&self, task: &Task, i: usize) -> (Vector3<f64>, Vector3<f64>) {
         let st = task.stance.as_ref().expect("a standing body");
         let (rot, pos) = self.data.link_pose(&task.model, st.feet[i].link);
-        let target = &st.world_from_foot[i];
-        let dp = target.translation.vector - pos;
-        let r_err = target.rotation.to_rotation_matrix().matrix() * rot.transpose();
+        let nominal = &st.world_from_foot[i];
+        let target_rot = nominal.rotation.to_rotation_matrix().into_inner();
+        if st.placement.is_some() {
+            let yaw = |r: &Matrix3<f64>| r[(1, 0)].atan2(r[(0, 0)]);
+            let turn = nalgebra::Rotation3::from_axis_angle(
+                &Vector3::z_axis(),
+                yaw(&rot) - yaw(&target_rot),
+            );
+            let r_err = turn.matrix() * target_rot * rot.transpose();
+            let dr = rotation_vector(&r_err);
+            let dz = nominal.translation.vector.z - pos.z;
+            return (Vector3::new(0.0, 0.0, dz), Vector3::new(dr.x, dr.y, 0.0));
+        }
+        let dp = nominal.translation.vector - pos;
+        let r_err = target_rot * rot.transpose();
         (dp, rotation_vector(&r_err))
+    }
+
+    /// The geometric rows, each `g(q) ≤ 0` with its gradient in q, after the statics of `q`:
+    ///
+    /// * balance: the centre of pressure at least the task's margin inside every edge of the
+    ///   support hull of the feet where they stand now; an edge moves with its two sole corners,
+    ///   so with `r = a − p`, `t` the edge's unit direction, `L` its length and `n` its outward
+    ///   normal, `∇(n·r) = u·(J_b − J_a) + n·(J_a − J_p)`, `u = (I − t tᵀ)(−r_y, r_x)/L`;
+    /// * when the planner places the feet: every sole corner inside every edge of the standing
+    ///   area, then the stance's width (both bounds), stagger (both signs) and relative yaw (both
+    ///   bounds, as the arc at the soles' mean half-length, in metres like the other rows);
+    /// * when the body has a head and the phase a gaze point: the gaze point within the eyes'
+    ///   cone, `cos θ_max − s·d̂ ≤ 0` (per metre), `s` the line of sight and `d̂` the unit
+    ///   direction from the eyes to the point.
+    ///
+    /// The number of rows is at most [`geometry_row_count`].
+    pub fn geometry_rows(
+        &mut self,
+        task: &Task,
+        gaze_m: Option<&Vector3<f64>>,
+        mut each: impl FnMut(Row, f64, &[f64]),
+    ) {
+        if let (Some(head), Some(target)) = (&task.head, gaze_m) {
+            let (g, eye, s, d) = self.gaze(task, head, target);
+            let m = &task.model;
+            self.data.point_jacobian(m, head.link, &eye, &mut self.jac);
+            self.data.angular_jacobian(m, head.link, &mut self.jac2);
+            let dist = (target - eye).norm().max(1e-9);
+            for k in 0..m.nq() {
+                let w = Vector3::new(self.jac2[(0, k)], self.jac2[(1, k)], self.jac2[(2, k)]);
+                let je = Vector3::new(self.jac[(0, k)], self.jac[(1, k)], self.jac[(2, k)]);
+                // d(s·d̂) = (ω × s)·d̂ + s·(I − d̂d̂ᵀ)(−J_eye)/|d|
+                let dd = -(je - d * d.dot(&je)) / dist;
+                self.row[k] = -(w.cross(&s).dot(&d) + s.dot(&dd));
+            }
+            each(Row::Gaze, g, &self.row);
+        }
+        let (Some(st), Some(g)) = (&task.stance, self.ground) else {
+            return;
+        };
+        let m = &task.model;
+        let n = m.nq();
+        self.centre_of_pressure_jacobian(task);
+        let corner = |data: &StaticsData, id: usize| {
+            let f = &st.feet[id / 4];
+            let (sx, sy) = SOLE_CORNERS[id % 4];
+            let off = Vector3::new(sx * f.half_length_m, sy * f.half_width_m, 0.0);
+            data.link_point(m, f.link, &(f.sole_center_in_link_m + off))
+        };
+        let p = g.cop_total_m;
+        let margin = task.objective.balance_margin_m;
+        let Some(pl) = &st.placement else {
+            // fixed feet: the nominal stance's polygon, which does not move
+            for (nrm, d) in st.edges() {
+                for k in 0..n {
+                    self.row[k] = nrm.x * self.cop_jac[(0, k)] + nrm.y * self.cop_jac[(1, k)];
+                }
+                each(Row::Balance, margin - (d - nrm.dot(&p)), &self.row);
+            }
+            return;
+        };
+        for (ia, ib, nrm, _) in g.support.edges() {
+            let (a3, b3) = (corner(&self.data, ia), corner(&self.data, ib));
+            let (a, b) = (a3.xy(), b3.xy());
+            let l = (b - a).norm();
+            let t = (b - a) / l;
+            let r = a - p;
+            let rot = Vector2::new(-r.y, r.x);
+            let u = (rot - t * t.dot(&rot)) / l;
+            self.data
+                .point_jacobian(m, st.feet[ia / 4].link, &a3, &mut self.jac);
+            self.data
+                .point_jacobian(m, st.feet[ib / 4].link, &b3, &mut self.jac2);
+            for k in 0..n {
+                let ja = Vector2::new(self.jac[(0, k)], self.jac[(1, k)]);
+                let jb = Vector2::new(self.jac2[(0, k)], self.jac2[(1, k)]);
+                let jp = Vector2::new(self.cop_jac[(0, k)], self.cop_jac[(1, k)]);
+                self.row[k] = -(u.dot(&(jb - ja)) + nrm.dot(&(ja - jp)));
+            }
+            each(Row::Balance, margin - nrm.dot(&r), &self.row);
+        }
+        for id in 0..8 {
+            let c3 = corner(&self.data, id);
+            self.data
+                .point_jacobian(m, st.feet[id / 4].link, &c3, &mut self.jac);
+            for (nrm, d) in pl.area_edges() {
+                for k in 0..n {
+                    self.row[k] = nrm.x * self.jac[(0, k)] + nrm.y * self.jac[(1, k)];
+                }
+                each(Row::Placement, nrm.dot(&c3.xy()) - d, &self.row);
+            }
+        }
+        let geo = g.feet.geometry();
+        let centre = |data: &StaticsData, i: usize| {
+            data.link_point(m, st.feet[i].link, &st.feet[i].sole_center_in_link_m)
+        };
+        let (cl, cr) = (centre(&self.data, 0), centre(&self.data, 1));
+        self.data
+            .point_jacobian(m, st.feet[0].link, &cl, &mut self.jac);
+        self.data
+            .point_jacobian(m, st.feet[1].link, &cr, &mut self.jac2);
+        self.data
+            .angular_jacobian(m, st.feet[0].link, &mut self.jac3);
+        self.data
+            .angular_jacobian(m, st.feet[1].link, &mut self.jac4);
+        let x_axis =
+            |data: &StaticsData, i: usize| data.link_pose(m, st.feet[i].link).0 * Vector3::x();
+        let (xl, xr) = (x_axis(&self.data, 0), x_axis(&self.data, 1));
+        let (sh, ch) = geo.heading_rad.sin_cos();
+        let (x_h, y_h) = (Vector2::new(ch, sh), Vector2::new(-sh, ch));
+        let arm = 0.5 * (st.feet[0].half_length_m + st.feet[1].half_length_m);
+        // d(width), d(stagger), d(relative yaw) per coordinate, then the six rows
+        for (which, (value, sign)) in [
+            (0, (pl.width_range_m.0 - geo.width_m, -1.0)),
+            (0, (geo.width_m - pl.width_range_m.1, 1.0)),
+            (1, (geo.stagger_m - pl.stagger_max_m, 1.0)),
+            (1, (-geo.stagger_m - pl.stagger_max_m, -1.0)),
+            (
+                2,
+                (
+                    arm * (pl.relative_yaw_range_rad.0 - geo.relative_yaw_rad),
+                    -arm,
+                ),
+            ),
+            (
+                2,
+                (
+                    arm * (geo.relative_yaw_rad - pl.relative_yaw_range_rad.1),
+                    arm,
+                ),
+            ),
+        ] {
+            for k in 0..n {
+                let dd = Vector2::new(
+                    self.jac[(0, k)] - self.jac2[(0, k)],
+                    self.jac[(1, k)] - self.jac2[(1, k)],
+                );
+                let w = |j: &Matrix3xX<f64>| Vector3::new(j[(0, k)], j[(1, k)], j[(2, k)]);
+                let (dl, dr) = (yaw_rate(&xl, &w(&self.jac3)), yaw_rate(&xr, &w(&self.jac4)));
+                let dh = 0.5 * (dl + dr);
+                let d = match which {
+                    0 => dd.dot(&y_h) - geo.stagger_m * dh,
+                    1 => dd.dot(&x_h) + geo.width_m * dh,
+                    _ => dl - dr,
+                };
+                self.row[k] = sign * d;
+            }
+            each(Row::Placement, value, &self.row);
+        }
     }
 
     /// Clearances of the body (capsules and boxes) from the obstacles and from itself, below
@@ -498,6 +713,12 @@ impl PostureWork {
         let (_, p) = self.data.link_pose(&task.model, l);
         self.data.point_jacobian(&task.model, l, &p, &mut self.jac);
         self.data.angular_jacobian(&task.model, l, &mut self.jac2);
+        if st.placement.is_some() {
+            // placed feet: only the height and the tilts are held (see `foot_error`)
+            self.jac.row_mut(0).fill(0.0);
+            self.jac.row_mut(1).fill(0.0);
+            self.jac2.row_mut(2).fill(0.0);
+        }
     }
 }
 

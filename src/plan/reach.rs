@@ -7,6 +7,8 @@
 //! path. A target beyond that bound is out of reach whatever the optimiser does; a target within
 //! it that the optimiser did not reach (with the feet in place and the balance kept) is only
 //! "not reached": no search can prove that no balanced, collision-free posture reaches it.
+//! Where the planner places the feet, the anchor is anywhere a foot's frame can stand: at its
+//! height, within its sole's reach of the standing area.
 
 use super::task::Task;
 use crate::body::{BodyModel, JointKind, StaticsData, forward_kinematics};
@@ -51,6 +53,29 @@ pub fn beyond_reach_m(task: &Task, h: usize, target_m: &Vector3<f64>) -> Option<
     let m = &task.model;
     let hand = task.hand_links[h].as_ref()?.0;
     let anchors: Vec<(usize, Vector3<f64>)> = match &task.stance {
+        Some(st) if st.placement.is_some() => {
+            // placed feet: the foot's frame stands at its nominal height, its sole inside the
+            // standing area, so its origin lies within the sole's reach r of the area
+            let area = &st.placement.as_ref()?.area_m;
+            let excess = (0..2)
+                .map(|i| {
+                    let f = &st.feet[i];
+                    let r = crate::body::stance::SOLE_CORNERS
+                        .iter()
+                        .map(|(sx, sy)| {
+                            (f.sole_center_in_link_m.xy()
+                                + nalgebra::Vector2::new(sx * f.half_length_m, sy * f.half_width_m))
+                            .norm()
+                        })
+                        .fold(0.0, f64::max);
+                    let z0 = st.world_from_foot[i].translation.vector.z;
+                    let flat = (distance_to_polygon(area, &target_m.xy()) - r).max(0.0);
+                    (flat * flat + (target_m.z - z0).powi(2)).sqrt()
+                        - chain_length_m(m, f.link, hand)
+                })
+                .fold(f64::NEG_INFINITY, f64::max);
+            return (excess > 0.0).then_some(excess);
+        }
         Some(st) => (0..2)
             .map(|i| (st.feet[i].link, st.world_from_foot[i].translation.vector))
             .collect(),
@@ -86,4 +111,24 @@ pub fn beyond_reach_m(task: &Task, h: usize, target_m: &Vector3<f64>) -> Option<
         .map(|(link, at)| (target_m - at).norm() - chain_length_m(m, *link, hand))
         .fold(f64::NEG_INFINITY, f64::max);
     (excess > 0.0).then_some(excess)
+}
+
+/// Distance \[m\] from `p` to the convex polygon `v` (counter-clockwise), 0 inside.
+fn distance_to_polygon(v: &[nalgebra::Vector2<f64>], p: &nalgebra::Vector2<f64>) -> f64 {
+    let n = v.len();
+    let inside = (0..n).all(|i| {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        (b - a).perp(&(p - a)) >= 0.0
+    });
+    if inside {
+        return 0.0;
+    }
+    (0..n)
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % n]);
+            let ab = b - a;
+            let t = ((p - a).dot(&ab) / ab.norm_squared().max(1e-300)).clamp(0.0, 1.0);
+            (a + ab * t - p).norm()
+        })
+        .fold(f64::INFINITY, f64::min)
 }

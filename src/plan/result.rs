@@ -122,6 +122,9 @@ pub struct PhaseSummary {
     /// What the closest clearance is to (an obstacle or a body part).
     pub closest: Option<String>,
     pub balance_margin_m: Option<f64>,
+    /// Where the feet stand and the steps and turn from the state before (the previous phase,
+    /// or the rest stance before the first phase); `None` for a body without feet.
+    pub feet: Option<crate::plan::stepping::PhaseFeet>,
     /// The three most-loaded half-joints (relative load).
     pub most_loaded: Vec<(String, f64)>,
     /// Joints within 1 % of their range from a limit.
@@ -202,12 +205,12 @@ impl PhaseSummary {
             v.push(match &self.target_inside {
                 Some(o) => format!("'{}': the target lies inside '{o}'", self.phase),
                 None if self.beyond_reach_m.is_some() => format!(
-                    "'{}': the target is out of reach by {:.0} mm (feet in place, balance kept; it is farther than the body is long)",
+                    "'{}': the target is out of reach by {:.0} mm (standing where the task allows, balance kept; it is farther than the body is long)",
                     self.phase,
                     1000.0 * self.hand_error_m
                 ),
                 None => format!(
-                    "'{}': the target was not reached, {:.0} mm short (feet in place, balance kept; no posture that reaches it was found, though it is within the body's length)",
+                    "'{}': the target was not reached, {:.0} mm short (standing where the task allows, balance kept; no posture that reaches it was found, though it is within the body's length)",
                     self.phase,
                     1000.0 * self.hand_error_m
                 ),

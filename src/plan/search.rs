@@ -16,6 +16,7 @@ use super::objective::{Discomfort, LoadCost, Shape};
 use super::posture::{PostureWork, Scene};
 use super::qp::QpError;
 use super::sqp::{PhaseProblem, SqpOutcome, SqpSettings, SqpWork, solve_phase};
+use super::stepping::Stepping;
 use super::task::Task;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -68,6 +69,9 @@ pub struct PhaseSolver<'t> {
     /// Every converged, feasible posture the multi-starts found since the caller last cleared
     /// it (the planner's pool of local optima per group, see `Planner::pool_swap`).
     pub pool: Vec<Vec<f64>>,
+    /// The cost of steps to and from the neighbouring phases of the next solves (set by the
+    /// planner per group; empty: no cost).
+    pub stepping: Stepping,
 }
 
 /// A phase to solve: targets, hand forces, and how its cost is weighed.
@@ -78,6 +82,8 @@ pub struct PhaseSpec<'a> {
     /// The discomfort's shape (the objective's, or the fatigue-only seeds' measure).
     pub shape: Shape,
     pub capacity: &'a [f64],
+    /// Where the worker looks (`None`: anywhere).
+    pub gaze_m: Option<Vector3<f64>>,
 }
 
 fn set(task: &Task, q: &mut [f64], name: &str, v: f64) {
@@ -102,6 +108,7 @@ impl<'t> PhaseSolver<'t> {
             q_rest: vec![0.0; task.model.nq()],
             extra_seeds: Vec::new(),
             pool: Vec::new(),
+            stepping: Stepping::default(),
         })
     }
 
@@ -137,6 +144,45 @@ impl<'t> PhaseSolver<'t> {
             set(t, &mut twist, "lumbar_axial_rotation", 0.5 * azimuth);
             set(t, &mut twist, "pelvis_rotation", 0.3 * azimuth);
             out.push(twist);
+            // placed feet: the rest posture turned to face the work and stepped up to it, the
+            // stance's centre a forearm's length short of the targets (within the area)
+            if let (Some(pl), Ok(kx), Ok(ky), Ok(kr)) = (
+                t.stance.as_ref().and_then(|st| st.placement.as_ref()),
+                t.model.q_index("pelvis_tx"),
+                t.model.q_index("pelvis_ty"),
+                t.model.q_index("pelvis_rotation"),
+            ) {
+                let st = t.stance.as_ref().expect("placed feet stand");
+                let c0 = st
+                    .support_polygon_m
+                    .iter()
+                    .fold(nalgebra::Vector2::zeros(), |a, b| a + b)
+                    / st.support_polygon_m.len().max(1) as f64;
+                let to = centre.xy() - c0;
+                if to.norm() > 0.05 {
+                    let az = to.y.atan2(to.x);
+                    let dir = nalgebra::Vector2::new(az.cos(), az.sin());
+                    let (lo, hi) = pl.area_m.iter().fold(
+                        (
+                            nalgebra::Vector2::repeat(f64::INFINITY),
+                            nalgebra::Vector2::repeat(f64::NEG_INFINITY),
+                        ),
+                        |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+                    );
+                    let margin = nalgebra::Vector2::repeat(0.2);
+                    let c1 = (centre.xy() - 0.35 * dir)
+                        .sup(&(lo + margin))
+                        .inf(&(hi - margin));
+                    let p0 = nalgebra::Vector2::new(rest[kx], rest[ky]) - c0;
+                    let rot = nalgebra::Rotation2::new(az);
+                    let p1 = c1 + rot * p0;
+                    let mut facing = rest.clone();
+                    set(t, &mut facing, "pelvis_rotation", rest[kr] + az);
+                    set(t, &mut facing, "pelvis_tx", p1.x);
+                    set(t, &mut facing, "pelvis_ty", p1.y);
+                    out.push(facing);
+                }
+            }
             let geo = crate::body::worker::worker_geometry(&t.worker);
             let elevation = (centre.z - geo.shoulder_height_m).atan2(centre.x.max(0.05));
             for (abd, rot) in [(0.1, 0.0), (0.6, -0.6)] {
@@ -343,6 +389,7 @@ impl<'t> PhaseSolver<'t> {
                 discomfort_weight: spec.discomfort_weight,
                 shape: spec.shape,
                 capacity: spec.capacity,
+                gaze_m: spec.gaze_m,
             };
             let mut qq = found
                 .as_ref()
@@ -389,6 +436,8 @@ impl<'t> PhaseSolver<'t> {
             discomfort_weight: spec.discomfort_weight,
             shape: spec.shape,
             capacity: spec.capacity,
+            gaze_m: spec.gaze_m,
+            stepping: &self.stepping,
         };
         let r = solve_phase(
             self.task,

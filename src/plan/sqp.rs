@@ -43,8 +43,9 @@
 //! [`SqpSettings::tol_kkt`] (default 1e-5); otherwise the solve reports why it stopped.
 
 use super::objective::{Discomfort, LoadCost, Shape};
-use super::posture::{PostureWork, Scene};
+use super::posture::{PostureWork, Row, Scene, geometry_row_count};
 use super::qp::{PostureQp, QpError, QpPrecision, QpSizes};
+use super::stepping::Stepping;
 use super::task::Task;
 use crate::body::Direction;
 use nalgebra::Vector3;
@@ -162,6 +163,10 @@ pub struct PhaseProblem<'a> {
     pub shape: Shape,
     /// Capacity bound per half-joint (the load it may hold).
     pub capacity: &'a [f64],
+    /// Where the worker looks (`None`: anywhere).
+    pub gaze_m: Option<Vector3<f64>>,
+    /// The cost of the steps to and from the neighbouring phases.
+    pub stepping: &'a Stepping,
 }
 
 /// Buffers and the QP of one task.
@@ -230,11 +235,7 @@ impl SqpWork {
         let n = task.model.nq();
         let a = scene.actuated.len();
         let m = 6 + if task.stance.is_some() { 12 } else { 0 };
-        let e = task
-            .stance
-            .as_ref()
-            .map(|s| s.support_polygon_m.len())
-            .unwrap_or(0);
+        let e = geometry_row_count(task);
         let sizes = QpSizes {
             n,
             a,
@@ -318,8 +319,12 @@ fn merit(
     let s = work.settings;
     pw.statics(task, q, &prob.hand_force_n);
     pw.half_joint_loads(task, q, &mut work.f);
-    let j =
-        prob.cost.value(&work.f) + prob.discomfort_weight * prob.discomfort.value(q, prob.shape);
+    let steps = pw
+        .ground
+        .map_or(0.0, |g| prob.stepping.value(task, &g.feet));
+    let j = prob.cost.value(&work.f)
+        + prob.discomfort_weight * prob.discomfort.value(q, prob.shape)
+        + steps;
     let mut res = std::mem::take(&mut work.eq_res);
     equality_residuals(task, pw, &prob.targets_m, &mut res);
     let eq_l1: f64 = res.iter().map(|x| x.abs()).sum();
@@ -333,7 +338,20 @@ fn merit(
     let clear_viol = (task.objective.clearance_m - min_clear).max(0.0);
     let margin = pw.ground.map(|g| g.margin_m).unwrap_or(f64::INFINITY);
     let bal_viol = (task.objective.balance_margin_m - margin).max(0.0);
-    let geo = clear_viol.max(bal_viol);
+    let place_viol = match (&task.stance, pw.ground) {
+        (Some(st), Some(g)) => st.placement.as_ref().map_or(0.0, |pl| {
+            pl.violation_m(
+                &g.feet,
+                0.5 * (st.feet[0].half_length_m + st.feet[1].half_length_m),
+            )
+        }),
+        _ => 0.0,
+    };
+    let gaze_viol = match (&task.head, &prob.gaze_m) {
+        (Some(h), Some(t)) => pw.gaze(task, h, t).0.max(0.0),
+        _ => 0.0,
+    };
+    let geo = clear_viol.max(bal_viol).max(place_viol).max(gaze_viol);
     let mut cap = 0.0f64;
     for (h, &f) in work.f.iter().enumerate() {
         let bound = match prob.cost.capacity_bound(h, f) {
@@ -393,6 +411,10 @@ fn posture_terms(
         &mut work.dq_grad,
         &mut work.dq_curv,
     );
+    if let Some(g) = pw.ground {
+        prob.stepping
+            .add_gradient(task, &pw.data, &g.feet, &mut work.dq_grad);
+    }
     for (h, hj) in task.half_joints.iter().enumerate() {
         if scene.actuated_row[hj.q_index].is_none() || !hj.posture_dependent() {
             continue;
@@ -490,9 +512,6 @@ fn build_qp(
     pw.contacts
         .sort_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
     pw.contacts.truncate(s.clearance_rows);
-    if task.stance.is_some() {
-        pw.centre_of_pressure_jacobian(task);
-    }
 
     let n = task.model.nq();
     let qp = &mut work.qp;
@@ -612,17 +631,22 @@ fn build_qp(
         }
     }
     pw.contacts = contacts;
-    // Balance: n_e·(p̄ + J_p Δq) ≤ d_e − margin.
-    if let (Some(st), Some(g)) = (&task.stance, pw.ground) {
-        for (row, (nrm, d)) in st.edges().enumerate().take(sz.e) {
-            let rr = r.balance + row;
-            for k in 0..n {
-                let v = nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)];
-                qp.set_a(rr, c.dq + k, v);
-            }
-            qp.set_a(rr, c.v_geo, -1.0);
-            qp.b[rr] = d - task.objective.balance_margin_m - nrm.dot(&g.cop_total_m);
+    // Standing rows (balance, and the placed feet's area and ranges): g + ∇g·Δq − v ≤ 0
+    // (unused rows: 0 ≤ 1).
+    let mut row = 0;
+    pw.geometry_rows(task, prob.gaze_m.as_ref(), |_, g, grad| {
+        let rr = r.balance + row;
+        for (k, v) in grad.iter().enumerate().take(n) {
+            qp.set_a(rr, c.dq + k, *v);
         }
+        qp.set_a(rr, c.v_geo, -1.0);
+        qp.b[rr] = -g;
+        row += 1;
+    });
+    debug_assert!(row <= sz.e);
+    for rr in r.balance + row..r.balance + sz.e {
+        qp.set_a(rr, c.v_geo, -1.0);
+        qp.b[rr] = 1.0;
     }
 }
 
@@ -899,6 +923,7 @@ pub fn solve_phase(
                     scene,
                     pw,
                     &prob.targets_m,
+                    prob.gaze_m.as_ref(),
                     &mut trial,
                     work.settings.contact_horizon_m,
                 );
@@ -949,6 +974,7 @@ pub fn restore(
     scene: &Scene,
     pw: &mut PostureWork,
     targets: &[Option<Vector3<f64>>; 2],
+    gaze_m: Option<&Vector3<f64>>,
     q: &mut [f64],
     horizon_m: f64,
 ) -> f64 {
@@ -992,21 +1018,21 @@ pub fn restore(
             pw.contact_gradient(task, c, &mut grad);
             rows.push((task.objective.clearance_m - c.distance_m, grad.clone()));
         }
-        // a violated balance margin: the worst edge back to the margin
-        if let (Some(st), Some(g)) = (&task.stance, pw.ground)
-            && g.margin_m < task.objective.balance_margin_m
-        {
-            pw.centre_of_pressure_jacobian(task);
-            if let Some((nrm, d)) = st.edges().min_by(|a, b| {
-                (a.1 - a.0.dot(&g.cop_total_m)).total_cmp(&(b.1 - b.0.dot(&g.cop_total_m)))
-            }) {
-                // margin = d − n·p must rise to the minimum: −n·J_p Δ = m_min − margin
-                let row: Vec<f64> = (0..n)
-                    .map(|k| -(nrm.x * pw.cop_jac[(0, k)] + nrm.y * pw.cop_jac[(1, k)]))
-                    .collect();
-                let margin = d - nrm.dot(&g.cop_total_m);
-                rows.push((task.objective.balance_margin_m - margin, row));
+        // violated geometric rows back to their bounds, ∇g·Δ = −g: the gaze, the placed feet,
+        // and the most violated balance edge
+        let mut worst_balance: Option<(f64, Vec<f64>)> = None;
+        pw.geometry_rows(task, gaze_m, |kind, g, grad| {
+            if g <= 0.0 {
+                return;
             }
+            if kind != Row::Balance {
+                rows.push((-g, grad.to_vec()));
+            } else if worst_balance.as_ref().is_none_or(|(w, _)| g > *w) {
+                worst_balance = Some((g, grad.to_vec()));
+            }
+        });
+        if let Some((g, grad)) = worst_balance {
+            rows.push((-g, grad));
         }
         if rows.is_empty() {
             return 0.0;

@@ -6,7 +6,7 @@
 //! JSON Schema that `posture-opt schema` prints). Units: metres, kilograms, newtons, seconds,
 //! radians (degrees where a field says `_deg`); world frame x forward, y left, z up, floor at z = 0.
 
-use crate::body::stance::{Foot, Stance};
+use crate::body::stance::{Foot, Placement, Stance};
 use crate::body::worker::{LEFT_FOOT_LINK, RIGHT_FOOT_LINK, worker_geometry};
 use crate::body::{
     BodyModel, GRAVITY_M_S2, HalfJoint, StrengthTable, Worker, resolve_half_joints, worker_urdf,
@@ -14,7 +14,7 @@ use crate::body::{
 use crate::fatigue::params::{ParameterSet, ParameterSets};
 use crate::fatigue::{MaParams, Recovery};
 use crate::workstation::{ObstacleSpec, Workstation};
-use nalgebra::Vector3;
+use nalgebra::{Vector2, Vector3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -149,6 +149,11 @@ pub struct StanceFile {
     /// Foot links (left, right) of a custom robot; default `l_foot`, `r_foot`.
     #[serde(default)]
     pub feet: Option<[String; 2]>,
+    /// The standing area \[m\]: a convex polygon on the floor, as (x, y) corners in order. Given,
+    /// the planner places both feet in each phase (steps and turns) with every sole inside it;
+    /// absent, the feet stay on the stance above in every phase.
+    #[serde(default)]
+    pub area_m: Option<Vec<[f64; 2]>>,
 }
 
 /// The workstation.
@@ -219,6 +224,11 @@ pub struct PhaseFile {
     pub left_share: Option<f64>,
     /// How long the posture is held \[s\], 0.001..31536000 (a millisecond to a year).
     pub duration_s: f64,
+    /// Where the worker looks \[m\], world frame (a body with a `head` link): the head turns so
+    /// that this point lies within the eyes' comfortable cone (see `docs/worker.md`, "Looking
+    /// at the work"). Absent, the head is free.
+    #[serde(default)]
+    pub gaze_m: Option<[f64; 3]>,
 }
 
 /// When to re-plan.
@@ -323,8 +333,16 @@ pub struct ObjectiveFile {
     /// (default 0.02, 0..0.2).
     #[serde(default = "default_margin")]
     pub balance_margin_m: f64,
+    /// Cost of one step of a foot between consecutive phases, in the objective's units (its
+    /// fatigue term is the logarithm of the total fatigue index: 0.01 makes a step worth 1 % of
+    /// the task's fatigue; default 0.01, 0..10). Only where the planner places the feet.
+    #[serde(default = "default_step_weight")]
+    pub step_weight: f64,
 }
 
+fn default_step_weight() -> f64 {
+    0.01
+}
 fn default_discomfort() -> f64 {
     0.1
 }
@@ -342,6 +360,7 @@ impl Default for ObjectiveFile {
             zone_weight: 0.0,
             clearance_m: default_clearance(),
             balance_margin_m: default_margin(),
+            step_weight: default_step_weight(),
         }
     }
 }
@@ -381,12 +400,16 @@ pub struct Phase {
     pub hand_force_n: [Vector3<f64>; 2],
     pub duration_s: f64,
     pub object: Option<HeldObject>,
+    /// Where the worker looks \[m\], when the phase says.
+    pub gaze_m: Option<Vector3<f64>>,
 }
 
 impl Phase {
-    /// Same targets and hand forces: the same work, hence the same optimal posture.
+    /// Same targets, hand forces and gaze: the same work, hence the same optimal posture.
     pub fn same_work(&self, other: &Phase) -> bool {
-        self.targets_m == other.targets_m && self.hand_force_n == other.hand_force_n
+        self.targets_m == other.targets_m
+            && self.hand_force_n == other.hand_force_n
+            && self.gaze_m == other.gaze_m
     }
 
     /// Total force on the hands \[N\].
@@ -418,6 +441,8 @@ pub struct ObjectiveSettings {
     pub zone_weight: f64,
     pub clearance_m: f64,
     pub balance_margin_m: f64,
+    /// Cost of one step between consecutive phases (objective units).
+    pub step_weight: f64,
 }
 
 /// A validated task.
@@ -434,6 +459,9 @@ pub struct Task {
     pub model: BodyModel,
     /// Hand frames (right, left): link index and name; `None` if the body lacks that hand.
     pub hand_links: [Option<(usize, String)>; 2],
+    /// The head and its eyes, when the body has a link named `head` with a shape: the
+    /// phases' gaze applies.
+    pub head: Option<Head>,
     pub worker: Worker,
     pub gravity_m_s2: Vector3<f64>,
     pub stance: Option<Stance>,
@@ -704,6 +732,7 @@ impl Task {
                 forward_m: 0.0,
                 toe_out_deg: 0.0,
                 feet: None,
+                area_m: None,
             });
             let feet_names = sf
                 .feet
@@ -757,12 +786,14 @@ impl Task {
                     format!("must be within 0..45°, got {}", sf.toe_out_deg),
                 ));
             }
-            Some(Stance::new(
-                feet,
-                width,
-                sf.forward_m,
-                sf.toe_out_deg.to_radians(),
-            ))
+            let nominal = Stance::new(feet, width, sf.forward_m, sf.toe_out_deg.to_radians());
+            match &sf.area_m {
+                None => Some(nominal),
+                Some(area) => {
+                    let placement = placement(area, &sf, &nominal, width, &field)?;
+                    Some(nominal.with_placement(placement))
+                }
+            }
         };
 
         let file_set = match &f.fatigue.parameters_file {
@@ -962,7 +993,15 @@ impl Task {
                 format!("must be within 0..0.2 m, got {}", o.balance_margin_m),
             ));
         }
+        if !(o.step_weight.is_finite() && (0.0..=10.0).contains(&o.step_weight)) {
+            return Err(field(
+                "objective.step_weight",
+                format!("must be within 0..10, got {}", o.step_weight),
+            ));
+        }
+        let head = Head::of(&model);
         Ok(Task {
+            head,
             source,
             name: f.name,
             path: path.to_path_buf(),
@@ -990,6 +1029,7 @@ impl Task {
                 zone_weight: o.zone_weight,
                 clearance_m: o.clearance_m,
                 balance_margin_m: o.balance_margin_m,
+                step_weight: o.step_weight,
             },
             lifts,
         })
@@ -1145,12 +1185,23 @@ fn check_phase(
         None if targets[1].is_some() => 1.0,
         None => 0.0,
     };
+    let gaze_m = match ph.gaze_m {
+        Some(g) if g.iter().all(|x| x.is_finite() && x.abs() <= 100.0) => Some(Vector3::from(g)),
+        Some(g) => {
+            return Err(field(
+                &at("gaze_m"),
+                format!("must be finite and within ±100 m, got {g:?}"),
+            ));
+        }
+        None => None,
+    };
     Ok(Phase {
         name: ph.name.clone(),
         targets_m: targets,
         hand_force_n: [total * (1.0 - left_share), total * left_share],
         duration_s: ph.duration_s,
         object,
+        gaze_m,
     })
 }
 
@@ -1355,4 +1406,143 @@ pub fn check_gravity(g: [f64; 3]) -> Result<Vector3<f64>, String> {
         ));
     }
     Ok(v)
+}
+
+/// Lateral distance between the sole centres a placed stance keeps within \[m\] (see
+/// `docs/worker.md`, "Stepping and turning").
+pub const STANCE_WIDTH_RANGE_M: (f64, f64) = (0.15, 0.60);
+
+/// Largest fore-aft offset between the sole centres of a placed stance \[m\].
+pub const STANCE_STAGGER_MAX_M: f64 = 0.40;
+
+/// The left foot's yaw minus the right's in a placed stance \[deg\] (toe-out positive).
+pub const STANCE_RELATIVE_YAW_RANGE_DEG: (f64, f64) = (-10.0, 60.0);
+
+/// Where the planner may place the feet: the task's standing area and the human ranges of a
+/// stance, widened to hold the nominal stance when it lies outside them.
+fn placement(
+    pts: &[[f64; 2]],
+    sf: &StanceFile,
+    nominal: &Stance,
+    width_m: f64,
+    field: &dyn Fn(&str, String) -> TaskError,
+) -> Result<Placement, TaskError> {
+    let area: Vec<Vector2<f64>> = {
+        if pts.len() < 3 || pts.len() > 32 {
+            return Err(field(
+                "stance.area_m",
+                format!("needs 3 to 32 corners (x, y) in order, got {}", pts.len()),
+            ));
+        }
+        if let Some((i, p)) = pts.iter().enumerate().find(|(_, p)| {
+            !(p[0].is_finite() && p[1].is_finite() && p[0].abs() <= 10.0 && p[1].abs() <= 10.0)
+        }) {
+            return Err(field(
+                &format!("stance.area_m[{i}]"),
+                format!("must be finite and within ±10 m, got {p:?}"),
+            ));
+        }
+        let v: Vec<Vector2<f64>> = pts.iter().map(|p| Vector2::new(p[0], p[1])).collect();
+        // convex, in order: every turn has the same sign and none is degenerate
+        let n = v.len();
+        let turns: Vec<f64> = (0..n)
+            .map(|i| {
+                let (a, b, c) = (v[i], v[(i + 1) % n], v[(i + 2) % n]);
+                (b - a).perp(&(c - b))
+            })
+            .collect();
+        let convex = turns.iter().all(|t| *t > 1e-9) || turns.iter().all(|t| *t < -1e-9);
+        // a simple convex polygon turns once (a star's edges turn twice or more)
+        let turning: f64 = (0..n)
+            .map(|i| {
+                let (a, b, c) = (v[i], v[(i + 1) % n], v[(i + 2) % n]);
+                let (u, w) = (b - a, c - b);
+                u.perp(&w).atan2(u.dot(&w))
+            })
+            .sum();
+        if !convex || (turning.abs() - std::f64::consts::TAU).abs() > 1e-6 {
+            return Err(field(
+            "stance.area_m",
+            "must be a convex polygon with its corners in order (no three in line, no crossing edges); give the convex part of the floor the worker uses".into(),
+        ));
+        }
+        v
+    };
+    let nominal_relative_yaw_deg = 2.0 * sf.toe_out_deg;
+    let p = Placement::new(
+        &area,
+        (
+            STANCE_WIDTH_RANGE_M.0.min(width_m),
+            STANCE_WIDTH_RANGE_M.1.max(width_m),
+        ),
+        STANCE_STAGGER_MAX_M,
+        (
+            STANCE_RELATIVE_YAW_RANGE_DEG
+                .0
+                .min(nominal_relative_yaw_deg)
+                .to_radians(),
+            STANCE_RELATIVE_YAW_RANGE_DEG
+                .1
+                .max(nominal_relative_yaw_deg)
+                .to_radians(),
+        ),
+    );
+    // the rest posture stands on the nominal stance: its soles must be in the area
+    for c in &nominal.support_polygon_m {
+        if p.area_edges().any(|(nrm, d)| nrm.dot(c) > d + 1e-9) {
+            return Err(field(
+                "stance.area_m",
+                format!(
+                    "must hold the stance's soles (the worker rests there between cycles): the sole corner ({:.3}, {:.3}) m is outside",
+                    c.x, c.y
+                ),
+            ));
+        }
+    }
+    Ok(p)
+}
+
+impl Task {
+    /// The same task with the feet held on the nominal stance in every phase.
+    pub fn with_fixed_feet(&self) -> Task {
+        let mut t = self.clone();
+        if let Some(st) = t.stance.as_mut() {
+            st.placement = None;
+        }
+        t
+    }
+}
+
+/// The head's eyes: where they are and where they look, in the `head` link's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Head {
+    pub link: usize,
+    /// The point between the eyes \[m\]: the front of the head's shape at its middle height.
+    pub eye_in_link_m: Vector3<f64>,
+    /// The normal line of sight (unit): [`LINE_OF_SIGHT_BELOW_DEG`] below the head's forward x.
+    pub sight_in_link: Vector3<f64>,
+}
+
+/// The normal line of sight lies this far below the head's horizontal \[deg\]: 15° (MIL-STD-1472,
+/// the normal line of sight 10-15° below the horizontal; Grandjean, Fitting the Task to the Man).
+pub const LINE_OF_SIGHT_BELOW_DEG: f64 = 15.0;
+
+/// The eyes move comfortably this far about the normal line of sight \[deg\] (MIL-STD-1472:
+/// optimum eye rotation ±15°); a gaze point beyond it turns the head.
+pub const GAZE_CONE_HALF_ANGLE_DEG: f64 = 15.0;
+
+impl Head {
+    /// The head of `model`: its link named `head` with a collision shape (the generated
+    /// worker's), `None` otherwise.
+    pub fn of(model: &BodyModel) -> Option<Head> {
+        let link = model.frame_link("head").ok()?;
+        let c = model.links[link].capsules.first()?;
+        let mid = (c.a.coords + c.b.coords) / 2.0;
+        let down = LINE_OF_SIGHT_BELOW_DEG.to_radians();
+        Some(Head {
+            link,
+            eye_in_link_m: mid + Vector3::x() * (0.8 * c.radius_m),
+            sight_in_link: Vector3::new(down.cos(), 0.0, -down.sin()),
+        })
+    }
 }

@@ -120,7 +120,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 String::new()
             } else {
                 format!(
-                    " — TARGET {} by {:.0} mm (feet in place, balance kept){}",
+                    " — TARGET {} by {:.0} mm (standing where the task allows, balance kept){}",
                     if ph.beyond_reach_m.is_some() {
                         "OUT OF REACH"
                     } else {
@@ -145,6 +145,17 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 format!("{g} {}", pct(*f))
             })
             .collect();
+        if let Some(f) = &ph.feet {
+            let _ = writeln!(
+                o,
+                "  feet: {} (left sole at ({:.2}, {:.2}) m, right at ({:.2}, {:.2}) m)",
+                f.words,
+                f.left.sole_center_m[0],
+                f.left.sole_center_m[1],
+                f.right.sole_center_m[0],
+                f.right.sole_center_m[1]
+            );
+        }
         let _ = writeln!(o, "  most loaded: {}", loaded.join(", "));
         let mut line = Vec::new();
         if let Some(r) = &pa.rula {

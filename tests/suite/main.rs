@@ -27,6 +27,7 @@ mod plan_truth;
 mod reba;
 mod rula;
 mod shift_verdict;
+mod stance_placement;
 mod statistics;
 mod task_files;
 mod three_compartment;

@@ -12,6 +12,7 @@
 use super::ReportError;
 use super::fmt::{esc, num, unit};
 use super::svg::Svg;
+use crate::body::stance::FeetNow;
 use crate::body::{StaticsData, forward_kinematics};
 use crate::plan::Task;
 use crate::plan::task::HeldObject;
@@ -157,6 +158,8 @@ pub struct Scene {
     grips: [Option<Vector3<f64>>; 2],
     targets: [Option<Vector3<f64>>; 2],
     com: Vector3<f64>,
+    /// The support polygon of the feet where this posture puts them (world x, y) \[m\].
+    support_m: Vec<nalgebra::Vector2<f64>>,
 }
 
 fn box_corners(center: [f64; 3], size: [f64; 3]) -> Vec<Vector3<f64>> {
@@ -299,11 +302,17 @@ pub fn scene(task: &Task, q_rad: &[f64], phase: Option<usize>) -> Result<Scene, 
             corners: box_corners(center_m, size_m),
         });
     }
+    let support_m = task
+        .stance
+        .as_ref()
+        .map(|st| FeetNow::at(m, &data, &st.feet).support().polygon_m())
+        .unwrap_or_default();
     Ok(Scene {
         items,
         grips: if ph.is_some() { grips } else { [None, None] },
         targets: ph.map(|p| p.targets_m).unwrap_or([None, None]),
         com,
+        support_m,
     })
 }
 
@@ -672,17 +681,24 @@ pub fn view_svg(task: &Task, scene: &Scene, frame: &Frame, view: View, label: &s
             g.line(0.0, y, pw, y, "stroke=\"#6b6455\" stroke-width=\"1.5\"");
         }
     }
-    // support polygon and feet on the floor (top view)
+    // the standing area, the support polygon and the feet on the floor (top view)
     if view == View::Top
         && let Some(st) = &task.stance
     {
-        let poly: Vec<(f64, f64)> = st
-            .support_polygon_m
-            .iter()
-            .map(|p| px.p(view.project(&Vector3::new(p.x, p.y, 0.0))))
-            .collect();
+        let on_floor = |pts: &[nalgebra::Vector2<f64>]| -> Vec<(f64, f64)> {
+            pts.iter()
+                .map(|p| px.p(view.project(&Vector3::new(p.x, p.y, 0.0))))
+                .collect()
+        };
+        if let Some(pl) = &st.placement {
+            g.polygon(
+                &on_floor(&pl.area_m),
+                "fill=\"none\" stroke=\"#7a8699\" stroke-width=\"1\" stroke-dasharray=\"1 3\"",
+                Some("standing area: where the feet may be placed"),
+            );
+        }
         g.polygon(
-            &poly,
+            &on_floor(&scene.support_m),
             "fill=\"#e8f3e8\" stroke=\"#2e7d32\" stroke-width=\"1\" stroke-dasharray=\"4 3\"",
             Some("support polygon of the feet"),
         );
