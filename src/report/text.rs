@@ -106,6 +106,12 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
         }
     );
     let _ = writeln!(o);
+    // the feet's lines when the task places the feet (fixed ones never move)
+    let steps = task
+        .stance
+        .as_ref()
+        .is_some_and(|st| st.placement.is_some());
+    let m2 = |x: f64| (x * 100.0).round() / 100.0 + 0.0;
     for (ph, pa) in s.phases.iter().zip(&a.phases) {
         let _ = writeln!(
             o,
@@ -145,15 +151,15 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 format!("{g} {}", pct(*f))
             })
             .collect();
-        if let Some(f) = &ph.feet {
+        if let Some(f) = ph.feet.as_ref().filter(|_| steps) {
             let _ = writeln!(
                 o,
                 "  feet: {} (left sole at ({:.2}, {:.2}) m, right at ({:.2}, {:.2}) m)",
                 f.words,
-                f.left.sole_center_m[0],
-                f.left.sole_center_m[1],
-                f.right.sole_center_m[0],
-                f.right.sole_center_m[1]
+                m2(f.left.sole_center_m[0]),
+                m2(f.left.sole_center_m[1]),
+                m2(f.right.sole_center_m[0]),
+                m2(f.right.sole_center_m[1])
             );
         }
         let _ = writeln!(o, "  most loaded: {}", loaded.join(", "));
