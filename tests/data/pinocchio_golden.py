@@ -26,6 +26,13 @@ For every robot and posture it records, by joint name (Pinocchio orders joints i
   Jacobian only scales by the mass ratio).
 
 Continuous joints have two coordinates in Pinocchio (cos, sin); the angle is given per joint.
+
+The worker's postures include two with the feet placed off the nominal stance, as the planner
+places them (issue 33): "turned" (the whole body turned 60 degrees about the vertical and moved
+0.3 m sideways) and "staggered" (the left foot 0.25 m ahead of the right, the feet at yaws +30 and
+-5 degrees, both flat on the floor: the leg joints are solved here with Pinocchio's frame
+kinematics, `feet_placed`). The loads are the same for every posture; the foot forces act at
+points of the soles, so they move with the placed feet.
 """
 import json
 import math
@@ -67,6 +74,30 @@ ASYM = {"pelvis_tx": 0.12, "pelvis_ty": -0.08, "pelvis_tz": -0.05, "pelvis_rotat
         "l_hip_rotation": 0.6, "l_knee_flexion": 0.4, "l_ankle_dorsiflexion": 0.2,
         "l_ankle_inversion": -0.2}
 
+# The feet placed off the nominal stance, as the planner places them (issue 33): the floating
+# pelvis and the leg joints put each foot anywhere on the floor, flat, at any yaw.
+# TURNED: the whole body turned 60 degrees about the vertical and moved 0.3 m to its own left
+# (along the turned body's y axis: pelvis_tx = -0.3 sin 60 deg, pelvis_ty = 0.3 cos 60 deg), the
+# legs straight, so both feet stand flat at the nominal stance's shape, turned and moved with it.
+TURNED = {"pelvis_rotation": math.radians(60.0), "pelvis_tx": -0.3 * math.sin(math.radians(60.0)),
+          "pelvis_ty": 0.3 * math.cos(math.radians(60.0)), "lumbar_flexion": 0.2,
+          "lumbar_axial_rotation": -0.25, "r_shoulder_flexion": 0.6, "l_shoulder_flexion": 0.5,
+          "r_elbow_flexion": 1.1, "l_elbow_flexion": 1.2, "neck_flexion": 0.2}
+# STAGGERED: the left foot 0.25 m ahead of the right (world x), the feet at different yaws (left
+# +30 degrees, right -5 degrees), the pelvis lowered, turned, tilted and listed; each leg's six
+# joints are solved below (feet_placed) so that both feet stand flat on the floor where these say.
+STAGGERED_BODY = {"pelvis_tx": 0.03, "pelvis_ty": 0.01, "pelvis_tz": -0.02, "pelvis_rotation": 0.2,
+                  "pelvis_list": 0.05, "pelvis_tilt": 0.15, "lumbar_flexion": 0.35,
+                  "lumbar_lateral_bending": 0.1, "lumbar_axial_rotation": -0.3,
+                  "neck_flexion": 0.25, "r_shoulder_flexion": 1.2, "r_shoulder_abduction": 0.2,
+                  "r_elbow_flexion": 0.7, "r_wrist_flexion": 0.2, "l_shoulder_flexion": 0.9,
+                  "l_elbow_flexion": 0.9, "l_forearm_pronation": 0.4}
+# foot link frame: world x, y (m) and yaw (rad) of its x axis; flat, at the nominal height
+STAGGERED_FEET = {"l_foot": (0.20, 0.14, math.radians(30.0)),
+                  "r_foot": (-0.05, -0.10, math.radians(-5.0))}
+LEG = ["hip_flexion", "hip_abduction", "hip_rotation", "knee_flexion", "ankle_dorsiflexion",
+       "ankle_inversion"]
+
 # Hand loads (a 10 kg box split between the hands, pulled a little sideways, with a twist) and
 # arbitrary foot forces at points of the soles (not a balanced ground reaction: the test is of
 # the torques' arithmetic, which must hold for any loads).
@@ -80,7 +111,8 @@ WORKER_LOADS = [
 ROBOTS = [
     ("worker", "robots/worker.urdf", WORKER_LOADS, [
         ("standing", STAND), ("stoop", STOOP), ("squat", SQUAT), ("reach", REACH),
-        ("asymmetric", ASYM),
+        ("asymmetric", ASYM), ("turned", TURNED),
+        ("staggered", (STAGGERED_BODY, STAGGERED_FEET)),  # (body, feet): see feet_placed
     ]),
     ("two_link", "tests/data/two_link.urdf",
      [load("tip", [0.0, 0.0, 0.0], [0.0, 0.0, -49.05], [0.0, 0.0, 0.0]),
@@ -122,6 +154,45 @@ def set_q(model, values):
     return q
 
 
+def feet_placed(model, body, feet):
+    """The posture `body` with each leg's six joints solved so that each foot of `feet` stands flat
+    on the floor where it says: its link frame at (x, y, the nominal stance's height), rotated by
+    the yaw about the vertical only (roll and pitch zero). Gauss-Newton on the foot frame's
+    placement error log6(target^-1 oMf) (all six: x, y, height, roll, pitch, yaw) over the leg's six
+    joints, with Pinocchio's frame Jacobian (LOCAL) through Jlog6; the joints must end within their
+    URDF limits."""
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    # the nominal (neutral posture's) foot frame heights: soles on the floor
+    heights = {foot: data.oMf[model.getFrameId(foot, pin.FrameType.BODY)].translation[2]
+               for foot in feet}
+    q = set_q(model, dict(body, **{f"{s}_knee_flexion": 0.2 for s in "lr"}))
+    for foot, (x, y, yaw) in feet.items():
+        fid = model.getFrameId(foot, pin.FrameType.BODY)
+        z = heights[foot]
+        target = pin.SE3(pin.rpy.rpyToMatrix(0.0, 0.0, yaw), np.array([x, y, z]))
+        cols = [model.joints[model.getJointId(f"{foot[0]}_{j}")].idx_v for j in LEG]
+        for _ in range(100):
+            pin.framesForwardKinematics(model, data, q)
+            err_m = target.actInv(data.oMf[fid])
+            err = pin.log6(err_m).vector
+            if np.linalg.norm(err) < 1e-14:
+                break
+            J = pin.Jlog6(err_m) @ pin.computeFrameJacobian(model, data, q, fid,
+                                                             pin.ReferenceFrame.LOCAL)
+            q[cols] -= np.linalg.solve(J[:, cols], err)
+        else:
+            raise SystemExit(f"{foot}: no flat placement (error {np.linalg.norm(err):.1e})")
+        for j in LEG:
+            i = model.getJointId(f"{foot[0]}_{j}")
+            v = q[model.joints[i].idx_q]
+            lo = model.lowerPositionLimit[model.joints[i].idx_q]
+            hi = model.upperPositionLimit[model.joints[i].idx_q]
+            if not lo <= v <= hi:
+                raise SystemExit(f"{foot[0]}_{j} = {v:.3f} outside [{lo:.3f}, {hi:.3f}]")
+    return q
+
+
 def angle_of(model, q, name):
     j = model.joints[model.getJointId(name)]
     if j.nq == 2:
@@ -153,7 +224,7 @@ def run(key, path, loads, postures):
     root = model.inertias[0]  # the root link, fixed to the universe
     cases = []
     for pname, qn in postures:
-        q = set_q(model, qn)
+        q = feet_placed(model, *qn) if isinstance(qn, tuple) else set_q(model, qn)
         zero = np.zeros(model.nv)
         pin.forwardKinematics(model, data, q)
         pin.updateFramePlacements(model, data)

@@ -6,7 +6,10 @@
 //! forces at points of the foot links, chosen in the script, not posture-opt's ground reaction),
 //! the gravity torques and their derivative, every link frame's placement, the load points'
 //! positions and Jacobians, and the centre of mass with its Jacobian. Robots: the shipped worker
-//! (its floating pelvis is the URDF's prismatic + revolute pelvis joints), the two-link arm, the
+//! (its floating pelvis is the URDF's prismatic + revolute pelvis joints; seven postures, two of
+//! them with the feet placed off the nominal stance as the planner places them: the whole body
+//! turned 60° and moved sideways, and a staggered stance with the feet flat at different yaws),
+//! the two-link arm, the
 //! branched tree and `geometry.urdf` (fixed joints mid-chain, continuous joints, tilted and
 //! non-unit axes, rotated origins).
 //!
@@ -258,7 +261,7 @@ fn check_robot(name: &str) {
 }
 
 #[test]
-fn worker_matches_pinocchio_in_five_postures_with_hand_and_foot_loads() {
+fn worker_matches_pinocchio_in_seven_postures_with_hand_and_foot_loads() {
     check_robot("worker");
 }
 
@@ -277,8 +280,10 @@ fn every_urdf_geometry_matches_pinocchio() {
     check_robot("geometry");
 }
 
-/// The golden files cover what the tests rely on: the worker's five postures, both hands and
-/// both feet loaded, the pelvis joints among the compared torques.
+/// The golden files cover what the tests rely on: the worker's seven postures, both hands and
+/// both feet loaded, the pelvis joints among the compared torques, and feet placed off the
+/// nominal stance (issue 33): flat on the floor, turned and moved with the whole body, or
+/// staggered at different yaws.
 #[test]
 fn golden_files_cover_the_worker() {
     let doc = golden("worker");
@@ -288,7 +293,18 @@ fn golden_files_cover_the_worker() {
         .iter()
         .map(|c| c["name"].as_str().unwrap().to_string())
         .collect();
-    assert_eq!(names, ["standing", "stoop", "squat", "reach", "asymmetric"]);
+    assert_eq!(
+        names,
+        [
+            "standing",
+            "stoop",
+            "squat",
+            "reach",
+            "asymmetric",
+            "turned",
+            "staggered"
+        ]
+    );
     let c = &doc["cases"][0];
     let links: Vec<&str> = c["loads"]
         .as_array()
@@ -303,4 +319,42 @@ fn golden_files_cover_the_worker() {
     // the pelvis joints' torques are not zero with unbalanced foot forces: the comparison
     // exercises them
     assert!(f(&doc["cases"][4]["tau_nm"]["pelvis_tz"]).abs() > 1.0);
+
+    // the placed feet: (position, yaw of the x axis in degrees) of each foot link frame
+    let foot = |case: usize, link: &str| {
+        let p = &doc["cases"][case]["links"][link];
+        let r = |i: usize, j: usize| f(&p["rotation"][i][j]);
+        // flat: the link's z axis is the world's
+        close(r(2, 2), 1.0, 1e-12, &format!("case {case}: {link} flat"));
+        (v3(&p["position_m"]), r(1, 0).atan2(r(0, 0)).to_degrees())
+    };
+    let (l0, _) = foot(0, "l_foot");
+    let (r0, _) = foot(0, "r_foot");
+    // turned: the nominal stance turned 60° about the vertical and moved 0.3 m sideways
+    let (l, l_yaw) = foot(5, "l_foot");
+    let (r, r_yaw) = foot(5, "r_foot");
+    close(l_yaw, 60.0, 1e-9, "turned: left yaw");
+    close(r_yaw, 60.0, 1e-9, "turned: right yaw");
+    close(
+        (l - r).norm(),
+        (l0 - r0).norm(),
+        1e-12,
+        "turned: stance width",
+    );
+    close(l.z, l0.z, 1e-12, "turned: left on the floor");
+    close(r.z, r0.z, 1e-12, "turned: right on the floor");
+    close(
+        ((l + r) / 2.0 - (l0 + r0) / 2.0).norm(),
+        0.3,
+        1e-12,
+        "turned: moved",
+    );
+    // staggered: the left foot 0.25 m ahead of the right, yaws +30° and −5°, both on the floor
+    let (l, l_yaw) = foot(6, "l_foot");
+    let (r, r_yaw) = foot(6, "r_foot");
+    close(l_yaw, 30.0, 1e-9, "staggered: left yaw");
+    close(r_yaw, -5.0, 1e-9, "staggered: right yaw");
+    close(l.x - r.x, 0.25, 1e-12, "staggered: stagger");
+    close(l.z, l0.z, 1e-12, "staggered: left on the floor");
+    close(r.z, r0.z, 1e-12, "staggered: right on the floor");
 }
