@@ -12,7 +12,7 @@ import sys
 
 TASKS = [
     "shelf", "shelf_lowered", "shelf_high", "shelf_heavy", "shelf_two_hands",
-    "bench_assembly", "overhead_drilling", "pallet", "pallet_raised",
+    "bench_assembly", "overhead_drilling", "pallet", "pallet_raised", "side_transfer",
 ]
 GOAL = 1e-4
 

@@ -239,11 +239,14 @@ def plan(
     adapt: bool = True,
     fatigue_only: bool = False,
     capacity_floor: float = DEFAULT_CAPACITY_FLOOR,
+    zones: bool = True,
 ) -> Dict[str, Any]:
     """Plans postures for a task and assesses the plan: ``posture-opt plan --json``.
 
     ``adapt=False`` plans once and holds the postures (``--no-adapt``); ``fatigue_only`` drops the
-    discomfort term; ``capacity_floor`` is the work/rest advice's floor (0 < floor < 1).
+    discomfort term, the posture zones and the step cost; ``zones=False`` leaves the postures free
+    of ISO 11226 / EN 1005-4's acceptable zones (``--no-zones``); ``capacity_floor`` is the
+    work/rest advice's floor (0 < floor < 1).
 
     Returns the document's dict (``task``, ``joints``, ``half_joint_ids``, ``half_joints``,
     ``postures``, ``steps``, ``summary``, ``assessment``, ...). numpy arrays: ``steps["t_s"]``,
@@ -253,7 +256,7 @@ def plan(
     ``summary["final_capacity"]``.
     """
     t = load_task(task)
-    doc = json.loads(_native.plan(t, bool(adapt), bool(fatigue_only), _floor(capacity_floor)))
+    doc = json.loads(_native.plan(t, bool(adapt), bool(fatigue_only), _floor(capacity_floor), bool(zones)))
     return _plan_arrays(doc)
 
 

@@ -338,15 +338,17 @@ fn shard_of(shard: Option<&str>) -> PyResult<Option<Shard>> {
 
 /// Plans a task and assesses the plan: the `plan --json` document.
 #[pyfunction]
-#[pyo3(signature = (task, adapt=true, fatigue_only=false, capacity_floor=0.7))]
+#[pyo3(signature = (task, adapt=true, fatigue_only=false, capacity_floor=0.7, zones=true))]
 fn plan(
     py: Python<'_>,
     task: &PyTask,
     adapt: bool,
     fatigue_only: bool,
     capacity_floor: f64,
+    zones: bool,
 ) -> PyResult<String> {
-    let opts = plan_options(adapt, fatigue_only, capacity_floor)?;
+    let mut opts = plan_options(adapt, fatigue_only, capacity_floor)?;
+    opts.zones = zones;
     let data = task.inner.clone();
     py.detach(move || {
         let t = &data.task;

@@ -125,16 +125,13 @@ pub const JONSSON_REGIONS: [&str; 4] = ["shoulder", "elbow", "grip", "neck"];
 pub const JONSSON_STATIC: (f64, f64) = (0.02, 0.05);
 pub const JONSSON_MEAN: (f64, f64) = (0.10, 0.14);
 pub const JONSSON_PEAK: (f64, f64) = (0.50, 0.70);
+/// ISO 11226 Figure 3 (upper-arm elevation).
+pub use crate::plan::zones::ARM_HOLD_MIN as ISO_ARM_HOLD_MIN;
+pub use crate::plan::zones::ISO_BACKWARD_TOLERANCE_DEG;
 /// ISO 11226 / EN 1005-4: a posture held longer than this is static \[s\].
-pub const ISO_STATIC_S: f64 = 4.0;
-/// ISO 11226 Figure 2 (trunk inclination): maximum acceptable holding time \[min\] at 20° and
-/// at 60°, linear between.
-pub const ISO_TRUNK_HOLD_MIN: (f64, f64) = (4.0, 1.0);
-/// ISO 11226 Figure 3 (upper-arm elevation): maximum acceptable holding time \[min\] at 20° and
-/// at 60°, linear between.
-pub const ISO_ARM_HOLD_MIN: (f64, f64) = (3.0, 1.0);
-/// Backward trunk lean and head extension smaller than this are not judged (ASSUMPTION).
-pub const ISO_BACKWARD_TOLERANCE_DEG: f64 = 5.0;
+pub use crate::plan::zones::STATIC_HOLD_S as ISO_STATIC_S;
+/// ISO 11226 Figure 2 (trunk inclination).
+pub use crate::plan::zones::TRUNK_HOLD_MIN as ISO_TRUNK_HOLD_MIN;
 
 const JONSSON_SOURCE: &str = "Jonsson B. (1982) J Hum Ergol 11:73-88";
 const ISO_SOURCE: &str = "ISO 11226:2000; EN 1005-4:2005";
@@ -144,12 +141,7 @@ pub const EN_HIGH_FREQUENCY_PER_MIN: f64 = 2.0;
 const ROHMERT_SOURCE: &str = "Rohmert W. (1973) Applied Ergonomics 4(3):158-162";
 const MODEL_SOURCE: &str = "Ma et al. (2009) with recovery";
 
-/// The maximum acceptable holding time \[s\] of a zone whose holding time falls linearly from
-/// `hold_min.0` at 20° to `hold_min.1` at 60°.
-pub fn iso_holding_time_s(angle_deg: f64, hold_min: (f64, f64)) -> f64 {
-    let x = ((angle_deg - 20.0) / 40.0).clamp(0.0, 1.0);
-    60.0 * (hold_min.0 + x * (hold_min.1 - hold_min.0))
-}
+pub use crate::plan::zones::holding_time_s as iso_holding_time_s;
 
 /// A time distribution's `p`-quantile: the smallest level at or below which the load stays for
 /// at least the share `p` of the time. `levels`: (load, duration) pairs.
@@ -202,7 +194,7 @@ pub fn shift_verdict(
     variants_exhausted: Option<usize>,
 ) -> ShiftVerdict {
     let loads = last_cycle_loads(task, plan);
-    let holds = holds(task);
+    let holds = task.holds();
     let capable = (
         phases.iter().map(|p| p.capable_men).fold(1.0, f64::min),
         phases.iter().map(|p| p.capable_women).fold(1.0, f64::min),
@@ -444,52 +436,6 @@ fn fatigue_model(
         words,
         source: MODEL_SOURCE,
     }
-}
-
-/// Per phase, how long its posture is held without a break (the run of consecutive phases of the
-/// same work it belongs to, across the cycle's end when there is no rest) \[s\], and how often
-/// such a run starts per minute.
-pub fn holds(task: &Task) -> Vec<(f64, f64)> {
-    let n = task.phases.len();
-    if n == 0 {
-        return Vec::new();
-    }
-    let mut run = vec![0usize; n];
-    let mut r = 0;
-    for p in 1..n {
-        if !task.phases[p].same_work(&task.phases[p - 1]) {
-            r += 1;
-        }
-        run[p] = r;
-    }
-    let wraps =
-        n > 1 && task.rest_s <= 0.0 && task.phases[n - 1].same_work(&task.phases[0]) && r > 0;
-    if wraps {
-        let last = r;
-        for x in run.iter_mut() {
-            if *x == last {
-                *x = 0;
-            }
-        }
-    }
-    let mut total = vec![0.0; r + 1];
-    for p in 0..n {
-        total[run[p]] += task.phases[p].duration_s;
-    }
-    let cycle = task.cycle_s().max(1e-9);
-    (0..n)
-        .map(|p| {
-            let ph = &task.phases[p];
-            let mut runs: Vec<usize> = (0..n)
-                .filter(|&o| task.phases[o].same_work(ph))
-                .map(|o| run[o])
-                .collect();
-            runs.dedup();
-            runs.sort_unstable();
-            runs.dedup();
-            (total[run[p]], runs.len() as f64 * 60.0 / cycle)
-        })
-        .collect()
 }
 
 fn jonsson(task: &Task, loads: &[Vec<f64>], id: &'static str) -> Criterion {

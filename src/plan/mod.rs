@@ -10,7 +10,8 @@
 //! * [`result`]: the plan document;
 //! * [`held`]: the held object against the worker's own body (a collision of its phase);
 //! * [`stepping`]: the feet's poses, the steps between phases, their cost and words;
-//! * [`reach`]: when a target is provably out of reach (beyond the kinematic chain's length).
+//! * [`reach`]: when a target is provably out of reach (beyond the kinematic chain's length);
+//! * [`zones`]: the standards' acceptable posture zones, as elastic constraints.
 
 pub mod held;
 pub mod ik;
@@ -24,6 +25,7 @@ pub mod search;
 pub mod sqp;
 pub mod stepping;
 pub mod task;
+pub mod zones;
 
 pub use planner::{PlanError, PlanOptions, Planner, plan_task, plan_task_with};
 pub use result::Plan;

@@ -32,7 +32,9 @@
 //! sits at a limit; at 10 six of the nine held plans tired more and one (shelf_lowered) moved by
 //! 2.5 % with the QP's precision.
 //!
-//! **Assessment zones** (off by default; the task's `objective.zone_weight`). Twisting, bending
+//! **Assessment zones** (off by default; the task's `objective.zone_weight`). The standards'
+//! acceptable zones of the trunk, upper arms and head are constraints ([`super::zones`]); this
+//! soft term prices RULA's and REBA's zones beyond them (the wrist among them). Twisting, bending
 //! sideways, leaning back and bending the wrist cost the worker almost no gravity moment, so
 //! neither fatigue nor the gentle displacement term keeps a plan from them, and RULA and REBA
 //! score them high. Each of those directions gets a zone around neutral (10° of trunk twist, 15°

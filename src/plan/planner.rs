@@ -45,6 +45,7 @@ use super::search::{PhaseSolver, PhaseSpec, SearchStats};
 use super::sqp::{SqpOutcome, SqpSettings};
 use super::stepping::{self, Stepping};
 use super::task::Task;
+use super::zones::{self, ZONE_PENALTY_PER_RAD, ZoneLimits, ZoneWork};
 use crate::body::stance::FeetNow;
 use crate::fatigue::{MaParams, MaState};
 use nalgebra::Vector3;
@@ -72,8 +73,11 @@ pub struct PlanOptions {
     /// Re-plan as capacity falls (false: the first plan, optimal for the whole task with each
     /// phase's posture held throughout, is held).
     pub adapt: bool,
-    /// Minimise fatigue only (no discomfort term).
+    /// Minimise fatigue only (no discomfort term, no posture zones, no step cost).
     pub fatigue_only: bool,
+    /// Keep the postures within the acceptable zones of ISO 11226 and EN 1005-4
+    /// ([`super::zones`]; false: the unconstrained optimum, for comparison).
+    pub zones: bool,
     /// Compute the three baselines.
     pub baselines: bool,
     /// After the first plan's passes settle, search every group again from the other groups'
@@ -91,6 +95,7 @@ impl Default for PlanOptions {
         PlanOptions {
             adapt: true,
             fatigue_only: false,
+            zones: true,
             baselines: true,
             cross_seeding: true,
             pool_swap: true,
@@ -98,6 +103,10 @@ impl Default for PlanOptions {
         }
     }
 }
+
+/// A zone is reported as exceeded beyond this margin \[deg\] (the solver's tolerance is far
+/// smaller; the report's angles are rounded to degrees).
+pub const ZONE_REPORT_TOLERANCE_DEG: f64 = 0.5;
 
 /// Most coordination passes.
 pub const MAX_PASSES: usize = 5;
@@ -135,6 +144,11 @@ pub struct Planner<'t> {
     /// Per phase, a posture to start the first plan's global search from as well (another
     /// worker's plan: [`Self::hint`]).
     hint: Option<Vec<Vec<f64>>>,
+    /// Per group, the acceptable posture zones (the tightest of its phases'), whether they are
+    /// kept ([`PlanOptions::zones`]), and their evaluator (`None`: not the generated worker).
+    group_zones: Vec<ZoneLimits>,
+    zones_on: bool,
+    zone_work: Option<ZoneWork>,
 }
 
 /// Postures of every group, with their solve records.
@@ -164,6 +178,15 @@ impl<'t> Planner<'t> {
                 None => groups.push(vec![p]),
             }
         }
+        let phase_zones = zones::phase_limits(task);
+        let group_zones: Vec<ZoneLimits> = groups
+            .iter()
+            .map(|m| {
+                m.iter()
+                    .skip(1)
+                    .fold(phase_zones[m[0]], |z, &p| z.tighter(&phase_zones[p]))
+            })
+            .collect();
         // Rest posture: from the standing zero posture, brought onto the stance.
         let nh = task.half_joints.len();
         let ones = vec![10.0; nh];
@@ -174,6 +197,7 @@ impl<'t> Planner<'t> {
             shape: Shape::of(task),
             capacity: &ones,
             gaze_m: None,
+            zones: None,
         };
         let mut q_rest = vec![0.0; task.model.nq()];
         let zero = q_rest.clone();
@@ -204,6 +228,9 @@ impl<'t> Planner<'t> {
             swap: true,
             cross_rounds: CROSS_ROUNDS,
             hint: None,
+            group_zones,
+            zones_on: true,
+            zone_work: ZoneWork::new(&task.model),
         })
     }
 
@@ -380,7 +407,26 @@ impl<'t> Planner<'t> {
                     * self.solver.discomfort.value(&gp.q[g], Shape::of(self.task))
             })
             .sum();
-        (j, d + self.cycle_step_cost(gp, fatigue_only))
+        let z: f64 = (0..self.groups.len())
+            .map(|g| self.zone_penalty(g, &gp.q[g], fatigue_only))
+            .sum();
+        (j, d + self.cycle_step_cost(gp, fatigue_only) + z)
+    }
+
+    /// The posture zones group `g` keeps: `None` when the objective is fatigue alone or the
+    /// plan is asked without them.
+    fn zones_for(&self, g: usize, fatigue_only: bool) -> Option<ZoneLimits> {
+        (self.zones_on && !fatigue_only && self.zone_work.is_some()).then(|| self.group_zones[g])
+    }
+
+    /// The zones' penalty of group `g` at posture `q` (the objective's term).
+    fn zone_penalty(&mut self, g: usize, q: &[f64], fatigue_only: bool) -> f64 {
+        match (self.zones_for(g, fatigue_only), self.zone_work.as_mut()) {
+            (Some(lim), Some(z)) => {
+                ZONE_PENALTY_PER_RAD * z.violation_rad(&self.task.model, q, &lim)
+            }
+            _ => 0.0,
+        }
     }
 
     /// Optimises every group's posture for the state and horizon; `multistart` searches the
@@ -424,6 +470,7 @@ impl<'t> Planner<'t> {
                     shape: Shape::of(t),
                     capacity: &capacity,
                     gaze_m: rep.gaze_m,
+                    zones: self.zones_for(g, fatigue_only),
                 };
                 let start = gp.q[g].clone();
                 let mut q = start.clone();
@@ -512,13 +559,11 @@ impl<'t> Planner<'t> {
             for (g, pool) in pools.iter().enumerate() {
                 for cand in pool {
                     if !fatigue_only {
-                        // a swap trades no comfort for fatigue: the candidate may be no more
-                        // awkward than the posture it replaces (the objective's weight alone let
-                        // shelf trade up to 25° more trunk twist and a 70° wrist for 21 % less U)
-                        let (d, zw) = (&self.solver.discomfort, Shape::of(self.task));
-                        if d.value(cand, zw) > d.value(&gp.q[g], zw) + 1e-9
-                            || d.parks_beyond(cand, &d.clear_of_limits(&gp.q[g]))
-                        {
+                        // a swap parks no joint at a limit the posture it replaces kept clear of
+                        // (the objective's end penalty alone let shelf trade a 70° wrist for
+                        // less U); the trunk's twist and the other zones are the objective's
+                        let d = &self.solver.discomfort;
+                        if d.parks_beyond(cand, &d.clear_of_limits(&gp.q[g])) {
                             continue;
                         }
                     }
@@ -578,6 +623,7 @@ impl<'t> Planner<'t> {
         cost_of: &mut dyn FnMut() -> Box<dyn LoadCost>,
         weight: f64,
         shape: Shape,
+        fatigue_only: bool,
     ) -> Result<GroupPostures, PlanError> {
         let t = self.task;
         let n = self.groups.len();
@@ -596,6 +642,7 @@ impl<'t> Planner<'t> {
                 shape,
                 capacity: &big,
                 gaze_m: rep.gaze_m,
+                zones: self.zones_for(g, fatigue_only),
             };
             let mut cost = cost_of();
             let mut q = gp.q[g].clone();
@@ -640,7 +687,8 @@ impl<'t> Planner<'t> {
         } else {
             Shape::of(self.task)
         };
-        let mut gp = self.solve_independent(&mut || Box::new(NoLoadCost), 1.0, shape)?;
+        let mut gp =
+            self.solve_independent(&mut || Box::new(NoLoadCost), 1.0, shape, fatigue_only)?;
         self.neutral = Some(gp.clone());
         self.pools = vec![Vec::new(); self.groups.len()];
         let mut passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
@@ -668,6 +716,7 @@ impl<'t> Planner<'t> {
         self.solver.work.settings = opts.sqp;
         self.cross_rounds = if opts.cross_seeding { CROSS_ROUNDS } else { 0 };
         self.swap = opts.pool_swap;
+        self.zones_on = opts.zones;
         let (gp, passes) = self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?;
         self.first_plan = Some(gp.clone());
         let mut plan = self.simulate(gp, passes, opts)?;
@@ -707,8 +756,12 @@ impl<'t> Planner<'t> {
             Some(self.simulate(gp, passes, held)?)
         };
         let weight_free = 0.0;
-        let gp =
-            self.solve_independent(&mut || Box::new(SquaredLoads), weight_free, Shape::of(t))?;
+        let gp = self.solve_independent(
+            &mut || Box::new(SquaredLoads),
+            weight_free,
+            Shape::of(t),
+            opts.fatigue_only,
+        )?;
         let min_load = self.simulate(gp, Vec::new(), held)?;
         let gp = self.neutral.clone().expect("the main plan was made first");
         let neutral = self.simulate(gp, Vec::new(), held)?;
@@ -953,6 +1006,7 @@ impl<'t> Planner<'t> {
             summary: Summary {
                 adaptive: opts.adapt,
                 fatigue_only: opts.fatigue_only,
+                zones: opts.zones && !opts.fatigue_only && self.zone_work.is_some(),
                 duration_s: time,
                 planned_duration_s: t.duration_s(),
                 cycles_done,
@@ -1042,11 +1096,27 @@ impl<'t> Planner<'t> {
             });
             before = now;
         }
+        let holds = t.holds();
+        let limits = zones::phase_limits(t);
         (0..t.phases.len())
             .map(|p| {
                 let g = self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0);
                 let q = &gp.q[g];
                 let ph = &t.phases[p];
+                let outside_zones = match self.zone_work.as_mut() {
+                    Some(z) => z
+                        .excesses_at(&t.model, q, &limits[p], ZONE_REPORT_TOLERANCE_DEG)
+                        .into_iter()
+                        .map(|e| ZoneExcess {
+                            what: e.zone.words().to_string(),
+                            angle_deg: e.angle_deg,
+                            limit_deg: e.limit_deg,
+                            hold_s: holds[p].0,
+                            source: e.zone.source(limits[p].movement).to_string(),
+                        })
+                        .collect(),
+                    None => Vec::new(),
+                };
                 let mut loaded: Vec<(String, f64)> = t
                     .half_joints
                     .iter()
@@ -1111,6 +1181,7 @@ impl<'t> Planner<'t> {
                         .is_finite()
                         .then_some(sol.balance_margin_m),
                     feet: feet[p].clone(),
+                    outside_zones,
                     most_loaded: loaded,
                     at_limits: d
                         .near_limits(q, AT_LIMIT_FRACTION)

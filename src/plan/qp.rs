@@ -2,17 +2,19 @@
 //! user). The solver is built once per pattern and its data updated in place between SQP
 //! iterations (presolve off).
 //!
-//! Variables `x = [Δq (n), s⁺ (a), s⁻ (a), e (m), v_cap, v_geo]`: the posture step, the actuated
+//! Variables `x = [Δq (n), s⁺ (a), s⁻ (a), e⁺ (m), e⁻ (m), v_cap, v_geo, v_zone (z)]`: the posture step, the actuated
 //! joints' torques split by sign (`τ̄ + D Δq = s⁺ − s⁻`, so every half-joint's load `s±/MVC±` is
-//! linear and the sign of each torque is chosen by the solver), a free slack per equality row
-//! (hand targets, feet) with a stiff quadratic penalty — so the QP stays solvable when a target is
-//! out of reach and returns the nearest posture — and one slack each for the capacity rows and for
-//! the geometric inequalities (clearances and balance), with linear penalties.
+//! linear and the sign of each torque is chosen by the solver), a slack per equality row (hand
+//! targets, feet) split by sign, `e⁺ − e⁻`, at the merit's ℓ1 penalty (and a stiff quadratic
+//! one) — so the QP stays solvable when a target is out of reach and returns the nearest
+//! posture, and violates a target only where the merit would — and one slack each for the capacity rows and for
+//! the geometric inequalities (clearances and balance), with linear penalties, and one slack per
+//! posture-zone row (an ℓ1 penalty each: [`super::zones`]).
 //! Rows: torque split (a, =), targets and feet (m, =), `s⁺, s⁻, v ≥ 0`, one joint-limit row per
 //! joint (its nearer limit; the step box keeps the other out of reach), one capacity row per
-//! half-joint (on its own torque-split variable and the shared slack: two nonzeros, so the rows
-//! cost the factorisation almost nothing, where rows over every load variable made the whole
-//! torque block dense), `K` clearance rows and `E` balance rows.
+//! half-joint (on its own torque-split variable, the shared slack and the few posture variables
+//! its strength depends on, so the rows cost the factorisation almost nothing, where rows over
+//! every load variable made the whole torque block dense), `K` clearance rows, `E` balance rows and `Z` zone rows.
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -44,6 +46,8 @@ pub struct QpSizes {
     pub k: usize,
     /// Balance rows.
     pub e: usize,
+    /// Posture-zone rows, each with its own slack.
+    pub z: usize,
 }
 
 /// Column offsets.
@@ -55,6 +59,8 @@ pub struct Cols {
     pub e: usize,
     pub v_cap: usize,
     pub v_geo: usize,
+    /// The posture zones' slacks (`z` of them).
+    pub v_zone: usize,
     pub n_var: usize,
 }
 
@@ -68,6 +74,7 @@ pub struct Rows {
     pub cap: usize,
     pub clearance: usize,
     pub balance: usize,
+    pub zone: usize,
     pub n_row: usize,
     pub n_zero: usize,
 }
@@ -78,8 +85,9 @@ impl QpSizes {
         let s_plus = dq + self.n;
         let s_minus = s_plus + self.a;
         let e = s_minus + self.a;
-        let v_cap = e + self.m;
+        let v_cap = e + 2 * self.m;
         let v_geo = v_cap + 1;
+        let v_zone = v_geo + 1;
         Cols {
             dq,
             s_plus,
@@ -87,7 +95,8 @@ impl QpSizes {
             e,
             v_cap,
             v_geo,
-            n_var: v_geo + 1,
+            v_zone,
+            n_var: v_zone + self.z,
         }
     }
 
@@ -96,10 +105,11 @@ impl QpSizes {
         let torque = 0;
         let eq = torque + self.a;
         let nonneg = eq + self.m;
-        let limit = nonneg + 2 * self.a + 2;
+        let limit = nonneg + 2 * self.a + 2 + self.z + 2 * self.m;
         let cap = limit + self.n;
         let clearance = cap + self.c;
         let balance = clearance + self.k;
+        let zone = balance + self.e;
         let _ = c;
         Rows {
             torque,
@@ -109,7 +119,8 @@ impl QpSizes {
             cap,
             clearance,
             balance,
-            n_row: balance + self.e,
+            zone,
+            n_row: zone + self.z,
             n_zero: self.a + self.m,
         }
     }
@@ -160,8 +171,13 @@ impl Default for QpPrecision {
 }
 
 impl PostureQp {
-    /// A QP with the given sizes and solver precision.
-    pub fn new(sizes: QpSizes, precision: QpPrecision) -> Result<Self, QpError> {
+    /// A QP with the given sizes and solver precision; `capacity_q` adds, per capacity row, the
+    /// posture variables its strength depends on (pairs of capacity row, posture variable).
+    pub fn new(
+        sizes: QpSizes,
+        precision: QpPrecision,
+        capacity_q: &[(usize, usize)],
+    ) -> Result<Self, QpError> {
         let cols = sizes.cols();
         let rows = sizes.rows();
         let (n, a, m) = (sizes.n, sizes.a, sizes.m);
@@ -181,6 +197,9 @@ impl PostureQp {
             for r in 0..sizes.e {
                 pat.push((rows.balance + r, col));
             }
+            for r in 0..sizes.z {
+                pat.push((rows.zone + r, col));
+            }
         }
         for i in 0..a {
             pat.push((rows.torque + i, cols.s_plus + i));
@@ -193,8 +212,14 @@ impl PostureQp {
         for r in 0..sizes.c {
             pat.push((rows.cap + r, cols.s_plus + r));
         }
+        for &(r, k) in capacity_q {
+            pat.push((rows.cap + r, cols.dq + k));
+        }
         for i in 0..m {
             pat.push((rows.eq + i, cols.e + i));
+            pat.push((rows.eq + i, cols.e + m + i));
+            pat.push((rows.nonneg + 2 * a + 2 + sizes.z + i, cols.e + i));
+            pat.push((rows.nonneg + 2 * a + 2 + sizes.z + m + i, cols.e + m + i));
         }
         pat.push((rows.nonneg + 2 * a, cols.v_cap));
         pat.push((rows.nonneg + 2 * a + 1, cols.v_geo));
@@ -206,6 +231,10 @@ impl PostureQp {
         }
         for r in 0..sizes.e {
             pat.push((rows.balance + r, cols.v_geo));
+        }
+        for r in 0..sizes.z {
+            pat.push((rows.nonneg + 2 * a + 2 + r, cols.v_zone + r));
+            pat.push((rows.zone + r, cols.v_zone + r));
         }
         pat.sort_by_key(|&(row, col)| (col, row));
         pat.dedup();

@@ -125,6 +125,10 @@ pub struct PhaseSummary {
     /// Where the feet stand and the steps and turn from the state before (the previous phase,
     /// or the rest stance before the first phase); `None` for a body without feet.
     pub feet: Option<crate::plan::stepping::PhaseFeet>,
+    /// The acceptable zones of ISO 11226 / EN 1005-4 this phase's posture goes beyond (by more
+    /// than half a degree), with the limit for its hold. With the zones kept (the default) and
+    /// the phase's solve converged, each is the smallest excess the targets allow.
+    pub outside_zones: Vec<ZoneExcess>,
     /// The three most-loaded half-joints (relative load).
     pub most_loaded: Vec<(String, f64)>,
     /// Joints within 1 % of their range from a limit.
@@ -135,6 +139,20 @@ pub struct PhaseSummary {
     pub iterations: usize,
     pub solve: SqpOutcome,
     pub search: SearchStats,
+}
+
+/// A posture beyond one of the acceptable zones ([`crate::plan::zones`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct ZoneExcess {
+    /// What goes beyond the zone, in words ("right upper arm raised from the vertical").
+    pub what: String,
+    pub angle_deg: f64,
+    /// The zone's limit for this phase's hold \[deg\].
+    pub limit_deg: f64,
+    /// How long the posture is held without a break \[s\] (a movement at 4 s or less).
+    pub hold_s: f64,
+    /// "ISO 11226" or "EN 1005-4".
+    pub source: String,
 }
 
 /// A baseline plan's figures.
@@ -154,6 +172,9 @@ pub struct BaselineSummary {
 pub struct Summary {
     pub adaptive: bool,
     pub fatigue_only: bool,
+    /// Whether the postures were kept within the acceptable zones (off with `--no-zones` and
+    /// with `--fatigue-only`).
+    pub zones: bool,
     pub duration_s: f64,
     pub planned_duration_s: f64,
     pub cycles_done: u32,

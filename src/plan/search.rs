@@ -18,6 +18,7 @@ use super::qp::QpError;
 use super::sqp::{PhaseProblem, SqpOutcome, SqpSettings, SqpWork, solve_phase};
 use super::stepping::Stepping;
 use super::task::Task;
+use super::zones::ZoneLimits;
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -84,6 +85,8 @@ pub struct PhaseSpec<'a> {
     pub capacity: &'a [f64],
     /// Where the worker looks (`None`: anywhere).
     pub gaze_m: Option<Vector3<f64>>,
+    /// The acceptable posture zones (`None`: unconstrained).
+    pub zones: Option<ZoneLimits>,
 }
 
 fn set(task: &Task, q: &mut [f64], name: &str, v: f64) {
@@ -390,6 +393,7 @@ impl<'t> PhaseSolver<'t> {
                 shape: spec.shape,
                 capacity: spec.capacity,
                 gaze_m: spec.gaze_m,
+                zones: spec.zones,
             };
             let mut qq = found
                 .as_ref()
@@ -438,6 +442,7 @@ impl<'t> PhaseSolver<'t> {
             capacity: spec.capacity,
             gaze_m: spec.gaze_m,
             stepping: &self.stepping,
+            zones: spec.zones,
         };
         let r = solve_phase(
             self.task,

@@ -47,6 +47,7 @@ use super::posture::{PostureWork, Row, Scene, geometry_row_count};
 use super::qp::{PostureQp, QpError, QpPrecision, QpSizes};
 use super::stepping::Stepping;
 use super::task::Task;
+use super::zones::{ZONE_PENALTY_PER_RAD, ZONE_ROWS, ZoneLimits, ZoneWork};
 use crate::body::Direction;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -167,6 +168,8 @@ pub struct PhaseProblem<'a> {
     pub gaze_m: Option<Vector3<f64>>,
     /// The cost of the steps to and from the neighbouring phases.
     pub stepping: &'a Stepping,
+    /// The acceptable posture zones (`None`: unconstrained).
+    pub zones: Option<ZoneLimits>,
 }
 
 /// Buffers and the QP of one task.
@@ -214,6 +217,10 @@ pub struct SqpWork {
     q_plain: Vec<f64>,
     xr: Vec<f64>,
     px: Vec<f64>,
+    /// The posture zones' evaluator (`None`: the body is not the generated worker) and its
+    /// rows' gradients.
+    zone_work: Option<ZoneWork>,
+    zone_grad: [Vec<f64>; ZONE_ROWS],
 }
 
 /// Merit terms of a posture.
@@ -228,6 +235,9 @@ struct Merit {
     hand_err: f64,
     min_clear: f64,
     margin: f64,
+    /// The posture zones' rows and the sum of their violations \[rad\].
+    zone_g: [f64; ZONE_ROWS],
+    zone_l1: f64,
 }
 
 impl SqpWork {
@@ -243,10 +253,25 @@ impl SqpWork {
             c: 2 * a,
             k: settings.clearance_rows,
             e,
+            z: ZONE_ROWS,
         };
         let nh = task.half_joints.len();
+        // each capacity row's posture variables: those its strength curve depends on
+        let capacity_q: Vec<(usize, usize)> = task
+            .half_joints
+            .iter()
+            .filter_map(|hj| {
+                let row = scene.actuated_row[hj.q_index]?;
+                let split = match hj.direction {
+                    Direction::Positive => row,
+                    Direction::Negative => a + row,
+                };
+                Some(hj.posture.iter().map(move |p| (split, p.q_index)))
+            })
+            .flatten()
+            .collect();
         Ok(SqpWork {
-            qp: PostureQp::new(sizes, settings.precision)?,
+            qp: PostureQp::new(sizes, settings.precision, &capacity_q)?,
             settings,
             mu_eq: settings.mu_eq,
             hess: vec![0.0; n * n],
@@ -280,6 +305,8 @@ impl SqpWork {
             q_plain: vec![0.0; n],
             xr: vec![0.0; sizes.cols().n_var],
             px: vec![0.0; sizes.cols().n_var],
+            zone_work: ZoneWork::new(&task.model),
+            zone_grad: std::array::from_fn(|_| vec![0.0; n]),
         })
     }
 }
@@ -322,9 +349,16 @@ fn merit(
     let steps = pw
         .ground
         .map_or(0.0, |g| prob.stepping.value(task, &g.feet));
+    let mut zone_g = [0.0; ZONE_ROWS];
+    let mut zone_l1 = 0.0;
+    if let (Some(z), Some(lim)) = (&work.zone_work, &prob.zones) {
+        z.rows(&task.model, &pw.data, lim, &mut zone_g);
+        zone_l1 = zone_g.iter().map(|g| g.max(0.0)).sum();
+    }
     let j = prob.cost.value(&work.f)
         + prob.discomfort_weight * prob.discomfort.value(q, prob.shape)
-        + steps;
+        + steps
+        + ZONE_PENALTY_PER_RAD * zone_l1;
     let mut res = std::mem::take(&mut work.eq_res);
     equality_residuals(task, pw, &prob.targets_m, &mut res);
     let eq_l1: f64 = res.iter().map(|x| x.abs()).sum();
@@ -375,6 +409,8 @@ fn merit(
             s.contact_horizon_m
         },
         margin,
+        zone_g,
+        zone_l1,
     }
 }
 
@@ -523,9 +559,10 @@ fn build_qp(
         qp.q[c.dq + k] = work.dq_grad[k];
     }
     // Capacity rows, one per half-joint: f − c(f) ≤ 0 linearised at f̄ in the half-joint's own
-    // load, (1 − c′) s/MVC ≤ c(f̄) − c′ f̄. The strength's posture dependence is left out of
-    // these rows (it would couple each row to every posture variable and fill the KKT system);
-    // the rows are re-linearised at every iterate, so the constraint is met at the solution.
+    // load, (1 − c′) f ≤ c(f̄) − c′ f̄, with f = s/MVC(q) to first order in the torque-split
+    // variable s and in the few joints the strength curve depends on (without the latter the
+    // QP's steps walked into the bound where a strength curve falls: the line search then
+    // stalled).
     for i in 0..sz.c {
         let rr = r.cap + i;
         qp.set_a(rr, c.v_cap, -1.0);
@@ -553,6 +590,13 @@ fn build_qp(
         let rr = r.cap + split;
         qp.set_a(rr, col, (1.0 - slope) / mvc);
         qp.b[rr] = bound - slope * work.f[h];
+        // the load s/MVC(q) to first order in the posture too: −s̄ ∂MVC/∂q / MVC²
+        if hj.posture_dependent() && s_bar > 0.0 {
+            hj.mvc_gradient(q, &mut work.mvc_grad);
+            for &(k, dm) in &work.mvc_grad {
+                qp.set_a(rr, c.dq + k, -(1.0 - slope) * s_bar * dm / (mvc * mvc));
+            }
+        }
     }
     // Torque split rows.
     for (row, &j) in scene.actuated.iter().enumerate() {
@@ -585,10 +629,19 @@ fn build_qp(
             }
         }
     }
+    // ... split by sign at the ℓ1 penalty of the merit: a target is given up only where the
+    // merit gives it up.
+    let e_rows = r.nonneg + 2 * sz.a + 2 + sz.z;
     for i in 0..sz.m {
         qp.set_a(r.eq + i, c.e + i, 1.0);
+        qp.set_a(r.eq + i, c.e + sz.m + i, -1.0);
+        qp.set_a(e_rows + i, c.e + i, -1.0);
+        qp.set_a(e_rows + sz.m + i, c.e + sz.m + i, -1.0);
         qp.b[r.eq + i] = res[i];
-        qp.p_diag[c.e + i] = 2.0 * s.mu_eq_quadratic;
+        for col in [c.e + i, c.e + sz.m + i] {
+            qp.p_diag[col] = 2.0 * s.mu_eq_quadratic;
+            qp.q[col] = work.mu_eq;
+        }
     }
     work.eq_res = res;
     // Non-negativity of the torques and the slacks.
@@ -647,6 +700,31 @@ fn build_qp(
     for rr in r.balance + row..r.balance + sz.e {
         qp.set_a(rr, c.v_geo, -1.0);
         qp.b[rr] = 1.0;
+    }
+    // Posture zones, each with its own slack: g + ∇g·Δq − v_i ≤ 0, v_i ≥ 0 at the zones'
+    // penalty per radian (unused rows: 0 ≤ 1).
+    let mut g = [0.0; ZONE_ROWS];
+    let zones = match (work.zone_work.as_mut(), prob.zones.as_ref()) {
+        (Some(z), Some(lim)) => {
+            z.rows_and_gradients(&task.model, q, lim, &mut g, &mut work.zone_grad);
+            true
+        }
+        _ => false,
+    };
+    for i in 0..sz.z {
+        let rr = r.zone + i;
+        qp.set_a(rr, c.v_zone + i, -1.0);
+        qp.set_a(r.nonneg + 2 * sz.a + 2 + i, c.v_zone + i, -1.0);
+        qp.q[c.v_zone + i] = ZONE_PENALTY_PER_RAD;
+        qp.p_diag[c.v_zone + i] = 1e-6;
+        if zones {
+            for k in 0..n {
+                qp.set_a(rr, c.dq + k, work.zone_grad[i][k]);
+            }
+            qp.b[rr] = -g[i];
+        } else {
+            qp.b[rr] = 1.0;
+        }
     }
 }
 
@@ -788,10 +866,14 @@ fn current_point(task: &Task, scene: &Scene, pw: &PostureWork, work: &mut SqpWor
         work.x0[c.s_minus + row] = (-tau).max(0.0);
     }
     for (i, r) in work.eq_res.iter().enumerate() {
-        work.x0[c.e + i] = *r;
+        work.x0[c.e + i] = r.max(0.0);
+        work.x0[c.e + work.qp.sizes.m + i] = (-r).max(0.0);
     }
     work.x0[c.v_cap] = m.cap;
     work.x0[c.v_geo] = m.geo;
+    for (i, g) in m.zone_g.iter().enumerate() {
+        work.x0[c.v_zone + i] = g.max(0.0);
+    }
     let _ = task;
 }
 
@@ -824,9 +906,11 @@ fn predicted_decrease(work: &mut SqpWork, m0: &Merit) -> f64 {
     let objective = quadratic_model(qp, &work.x0, &mut xr, &mut px)
         - quadratic_model(qp, &qp.x, &mut xr, &mut px);
     (work.xr, work.px) = (xr, px);
+    let zone_after: f64 = qp.x[c.v_zone..c.n_var].iter().map(|v| v.max(0.0)).sum();
     let violations = work.mu_eq * (m0.eq_l1 - e_after)
         + s.mu_geo * (m0.geo - qp.x[c.v_geo].max(0.0))
-        + s.mu_cap * (m0.cap - qp.x[c.v_cap].max(0.0));
+        + s.mu_cap * (m0.cap - qp.x[c.v_cap].max(0.0))
+        + ZONE_PENALTY_PER_RAD * (m0.zone_l1 - zone_after);
     (objective + violations).max(0.0)
 }
 

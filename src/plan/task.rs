@@ -497,6 +497,52 @@ impl TaskFile {
 }
 
 impl Task {
+    /// Per phase, how long its posture is held without a break (the run of consecutive phases of the
+    /// same work it belongs to, across the cycle's end when there is no rest) \[s\], and how often
+    /// such a run starts per minute.
+    pub fn holds(&self) -> Vec<(f64, f64)> {
+        let n = self.phases.len();
+        if n == 0 {
+            return Vec::new();
+        }
+        let mut run = vec![0usize; n];
+        let mut r = 0;
+        for p in 1..n {
+            if !self.phases[p].same_work(&self.phases[p - 1]) {
+                r += 1;
+            }
+            run[p] = r;
+        }
+        let wraps =
+            n > 1 && self.rest_s <= 0.0 && self.phases[n - 1].same_work(&self.phases[0]) && r > 0;
+        if wraps {
+            let last = r;
+            for x in run.iter_mut() {
+                if *x == last {
+                    *x = 0;
+                }
+            }
+        }
+        let mut total = vec![0.0; r + 1];
+        for p in 0..n {
+            total[run[p]] += self.phases[p].duration_s;
+        }
+        let cycle = self.cycle_s().max(1e-9);
+        (0..n)
+            .map(|p| {
+                let ph = &self.phases[p];
+                let mut runs: Vec<usize> = (0..n)
+                    .filter(|&o| self.phases[o].same_work(ph))
+                    .map(|o| run[o])
+                    .collect();
+                runs.dedup();
+                runs.sort_unstable();
+                runs.dedup();
+                (total[run[p]], runs.len() as f64 * 60.0 / cycle)
+            })
+            .collect()
+    }
+
     /// Length of one cycle \[s\].
     pub fn cycle_s(&self) -> f64 {
         self.phases.iter().map(|p| p.duration_s).sum::<f64>() + self.rest_s

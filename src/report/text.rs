@@ -162,6 +162,30 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 m2(f.right.sole_center_m[1])
             );
         }
+        if !ph.outside_zones.is_empty() {
+            let what: Vec<String> = ph
+                .outside_zones
+                .iter()
+                .map(|z| {
+                    format!(
+                        "{} {:.0}° (at most {:.0}°, {})",
+                        z.what, z.angle_deg, z.limit_deg, z.source
+                    )
+                })
+                .collect();
+            let why = if p.summary.zones && ph.converged {
+                "the least the targets allow"
+            } else if p.summary.zones {
+                "the optimiser did not converge"
+            } else {
+                "zones not kept"
+            };
+            let _ = writeln!(
+                o,
+                "  outside the acceptable zones ({why}): {}",
+                what.join("; ")
+            );
+        }
         let _ = writeln!(o, "  most loaded: {}", loaded.join(", "));
         let mut line = Vec::new();
         if let Some(r) = &pa.rula {

@@ -24,6 +24,7 @@ mod niosh;
 mod paper_validation;
 mod plan_reference;
 mod plan_truth;
+mod posture_zones;
 mod reba;
 mod rula;
 mod shift_verdict;

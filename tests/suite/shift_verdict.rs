@@ -188,7 +188,7 @@ fn a_hold_cut_into_phases_is_one_hold() {
             .collect::<String>()
         + "rest_s: 20.0\ncycles: 10\n";
     let t = Task::from_yaml_str(&text, Path::new("split.yaml")).unwrap();
-    let holds = posture_opt::assess::verdict::holds(&t);
+    let holds = t.holds();
     for (hold_s, per_min) in &holds {
         assert_eq!(*hold_s, 20.0);
         assert!((per_min - 1.5).abs() < 1e-12, "{per_min}");

@@ -161,9 +161,13 @@ pub struct AssessArgs {
     /// Plan once for the whole task and hold the postures (no re-planning as capacity falls).
     #[arg(long)]
     pub no_adapt: bool,
-    /// Minimise fatigue only (no joint-range discomfort term).
+    /// Minimise fatigue only (no joint-range discomfort term, no posture zones, no step cost).
     #[arg(long)]
     pub fatigue_only: bool,
+    /// Leave the postures free of ISO 11226 / EN 1005-4's acceptable zones (the unconstrained
+    /// optimum, for comparison).
+    #[arg(long)]
+    pub no_zones: bool,
     /// Write the result as one JSON document on standard output.
     #[arg(long)]
     pub json: bool,
@@ -198,6 +202,7 @@ impl AssessArgs {
         let mut opts = posture_opt::plan::PlanOptions {
             adapt: !self.no_adapt,
             fatigue_only: self.fatigue_only,
+            zones: !self.no_zones,
             ..Default::default()
         };
         if let Some(t) = self.qp_tolerance {

@@ -311,6 +311,52 @@ pub fn findings(
         ));
     }
 
+    // acceptable posture zones
+    {
+        let outside: Vec<String> = s
+            .phases
+            .iter()
+            .filter(|p| !p.outside_zones.is_empty())
+            .map(|p| {
+                let z: Vec<String> = p
+                    .outside_zones
+                    .iter()
+                    .map(|z| {
+                        format!(
+                            "{} {:.0}° (at most {:.0}°, {})",
+                            esc(&z.what),
+                            z.angle_deg,
+                            z.limit_deg,
+                            esc(&z.source)
+                        )
+                    })
+                    .collect();
+                format!("{}: {}", q(&p.phase), z.join("; "))
+            })
+            .collect();
+        let text = if outside.is_empty() {
+            "Every posture is within the acceptable zones of ISO 11226 and EN 1005-4 (trunk, upper arms, head and neck).".to_string()
+        } else if s.zones {
+            format!(
+                "Outside the acceptable zones of ISO 11226 / EN 1005-4 where the targets force it (the plan keeps the zones elsewhere and makes each excess the least the search found): {}. Moving these targets is the layout change that removes them.",
+                outside.join("; ")
+            )
+        } else {
+            format!(
+                "Outside the acceptable zones of ISO 11226 / EN 1005-4 (planned without them, --no-zones): {}.",
+                outside.join("; ")
+            )
+        };
+        f.push(Finding::new(
+            if outside.is_empty() {
+                Level::Ok
+            } else {
+                Level::Warn
+            },
+            text,
+        ));
+    }
+
     // reach, collisions, balance
     let unreachable: Vec<&PhaseSummary> = s.phases.iter().filter(|p| !p.reachable).collect();
     if unreachable.is_empty() {

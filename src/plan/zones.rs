@@ -1,0 +1,419 @@
+//! Acceptable posture zones as constraints: the planner keeps each phase's trunk, upper arms and
+//! head within the zones ISO 11226:2000 (static postures) and EN 1005-4:2005+A1:2008 (postures in
+//! movement) accept, and minimises fatigue inside them.
+//!
+//! Each zone is one row `g(q) ≤ 0` per phase ([`Zone`]), measured as the shift verdict measures
+//! it ([`crate::assess::angles`]): the trunk's long axis against the vertical in the body's
+//! sagittal plane (forward positive) and out of it (side bending), the thorax's twist against the
+//! pelvis, each upper arm's angle against straight down, the head's long axis against the
+//! vertical, and the neck's flexion (head against trunk). The limits ([`ZoneLimits::for_hold`]):
+//!
+//! | zone | limit | source |
+//! |---|---|---|
+//! | trunk inclination | 20° for a hold of 4 min or more, 60° for 1 min or less, linear in between (the holding-time line read the other way); 60° for movements | ISO 11226 Fig. 2; EN 1005-4 (beyond 60° not acceptable) |
+//! | trunk leaning back | 5° | ISO 11226 (backward inclination without support not acceptable); 5°: [`ISO_BACKWARD_TOLERANCE_DEG`], ASSUMPTION |
+//! | trunk side bending, axial rotation | 10° each way | ISO 11226; EN 1005-4 |
+//! | upper-arm elevation | 20° for 3 min or more, 60° for 1 min or less, linear in between; 60° for movements | ISO 11226 Fig. 3; EN 1005-4 |
+//! | head inclination | 85° forward, 5° back | ISO 11226 |
+//! | neck flexion | 25° | ISO 11226 |
+//!
+//! A phase's hold is the run of consecutive phases of the same work it belongs to
+//! ([`Task::holds`]); a hold of 4 s or less is a movement (EN 1005-4). ASSUMPTION: the planner
+//! keeps out of EN 1005-4's conditionally acceptable zones (a twist beyond 10° done less than
+//! twice a minute) as well as its unacceptable ones, and applies the head's limits to movements
+//! too: where the layout allows, a posture no standard questions costs nothing to choose.
+//!
+//! **Elastic.** A target can force a posture outside a zone (a shelf above the head forces the
+//! arm up). So each row has its own slack with a linear penalty [`ZONE_PENALTY_PER_RAD`] in the
+//! objective (an ℓ1 exact penalty, the elastic mode of SNOPT): inside the zones nothing changes,
+//! and where the layout forces an excess, the plan makes the smallest one it can, each zone's
+//! separately, and reports it ([`Excess`]).
+
+use super::task::Task;
+use crate::body::{BodyModel, StaticsData, forward_kinematics};
+use nalgebra::Vector3;
+
+/// Backward trunk lean and head extension smaller than this are not judged \[deg\] (ASSUMPTION:
+/// less is not visible to an observer).
+pub const ISO_BACKWARD_TOLERANCE_DEG: f64 = 5.0;
+
+/// Number of zone rows per phase.
+pub const ZONE_ROWS: usize = 11;
+
+/// Penalty of one radian beyond a zone, in the objective's units (its fatigue term is the
+/// logarithm of the total fatigue index, so 10 makes a degree beyond a zone cost as much as
+/// about 19 % more fatigue). ASSUMPTION: large enough that no fatigue saving the shipped tasks
+/// offer buys a posture outside a zone the layout allows (measured: docs/results.md), small
+/// enough to keep the QP well scaled.
+pub const ZONE_PENALTY_PER_RAD: f64 = 10.0;
+
+/// A static hold is longer than this \[s\] (ISO 11226, EN 1005-4).
+pub const STATIC_HOLD_S: f64 = 4.0;
+
+/// ISO 11226 Figure 2 (trunk inclination): maximum acceptable holding time \[min\] at 20° and at
+/// 60°, linear between (as secondary sources reproduce the figure).
+pub const TRUNK_HOLD_MIN: (f64, f64) = (4.0, 1.0);
+
+/// ISO 11226 Figure 3 (upper-arm elevation): maximum acceptable holding time \[min\] at 20° and
+/// at 60°, linear between.
+pub const ARM_HOLD_MIN: (f64, f64) = (3.0, 1.0);
+
+/// The maximum acceptable holding time \[s\] of a zone whose holding time falls linearly from
+/// `hold_min.0` at 20° to `hold_min.1` at 60°.
+pub fn holding_time_s(angle_deg: f64, hold_min: (f64, f64)) -> f64 {
+    let x = ((angle_deg - 20.0) / 40.0).clamp(0.0, 1.0);
+    60.0 * (hold_min.0 + x * (hold_min.1 - hold_min.0))
+}
+
+/// The largest angle \[deg\] that may be held for `hold_s` (the holding-time line read the other
+/// way: 60° up to the shortest time, 20° from the longest).
+pub fn acceptable_angle_deg(hold_s: f64, hold_min: (f64, f64)) -> f64 {
+    let t_min = hold_s / 60.0;
+    let x = ((hold_min.0 - t_min) / (hold_min.0 - hold_min.1)).clamp(0.0, 1.0);
+    20.0 + 40.0 * x
+}
+
+/// One zone row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Zone {
+    TrunkInclination,
+    TrunkBack,
+    TrunkSideLeft,
+    TrunkSideRight,
+    TwistLeft,
+    TwistRight,
+    RightUpperArm,
+    LeftUpperArm,
+    HeadInclination,
+    HeadBack,
+    NeckFlexion,
+}
+
+impl Zone {
+    pub const ALL: [Zone; ZONE_ROWS] = [
+        Zone::TrunkInclination,
+        Zone::TrunkBack,
+        Zone::TrunkSideLeft,
+        Zone::TrunkSideRight,
+        Zone::TwistLeft,
+        Zone::TwistRight,
+        Zone::RightUpperArm,
+        Zone::LeftUpperArm,
+        Zone::HeadInclination,
+        Zone::HeadBack,
+        Zone::NeckFlexion,
+    ];
+
+    /// What the zone limits, in words ("trunk twisted to the left").
+    pub fn words(self) -> &'static str {
+        match self {
+            Zone::TrunkInclination => "trunk inclined forward from the vertical",
+            Zone::TrunkBack => "trunk leaning back",
+            Zone::TrunkSideLeft => "trunk bent to the left",
+            Zone::TrunkSideRight => "trunk bent to the right",
+            Zone::TwistLeft => "trunk twisted to the left",
+            Zone::TwistRight => "trunk twisted to the right",
+            Zone::RightUpperArm => "right upper arm raised from the vertical",
+            Zone::LeftUpperArm => "left upper arm raised from the vertical",
+            Zone::HeadInclination => "head inclined forward from the vertical",
+            Zone::HeadBack => "head tilted back",
+            Zone::NeckFlexion => "neck flexed against the trunk",
+        }
+    }
+
+    /// The standard the limit comes from.
+    pub fn source(self, movement: bool) -> &'static str {
+        match (self, movement) {
+            (Zone::HeadInclination | Zone::HeadBack | Zone::NeckFlexion, _) => "ISO 11226",
+            (_, true) => "EN 1005-4",
+            (_, false) => "ISO 11226",
+        }
+    }
+}
+
+/// The largest angle of each zone \[rad\] for one phase.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZoneLimits {
+    pub max_rad: [f64; ZONE_ROWS],
+    /// Whether the limits are those of a movement (a hold of at most 4 s).
+    pub movement: bool,
+}
+
+impl ZoneLimits {
+    /// The limits for a posture held `hold_s` seconds without a break.
+    pub fn for_hold(hold_s: f64) -> Self {
+        let movement = hold_s <= STATIC_HOLD_S;
+        let (trunk, arm) = if movement {
+            (60.0, 60.0)
+        } else {
+            (
+                acceptable_angle_deg(hold_s, TRUNK_HOLD_MIN),
+                acceptable_angle_deg(hold_s, ARM_HOLD_MIN),
+            )
+        };
+        let back = ISO_BACKWARD_TOLERANCE_DEG;
+        let deg = [
+            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0,
+        ];
+        ZoneLimits {
+            max_rad: deg.map(f64::to_radians),
+            movement,
+        }
+    }
+
+    /// The tighter of two phases' limits (phases sharing one posture).
+    pub fn tighter(&self, other: &ZoneLimits) -> Self {
+        let mut max_rad = self.max_rad;
+        for (a, b) in max_rad.iter_mut().zip(other.max_rad) {
+            *a = a.min(b);
+        }
+        ZoneLimits {
+            max_rad,
+            movement: self.movement && other.movement,
+        }
+    }
+}
+
+/// A zone a planned posture goes beyond.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Excess {
+    pub zone: Zone,
+    pub angle_deg: f64,
+    pub limit_deg: f64,
+}
+
+/// The links the zones are measured on (the generated worker's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Frames {
+    pelvis: usize,
+    trunk: usize,
+    head: usize,
+    upper: [usize; 2],
+    fore: [usize; 2],
+}
+
+impl Frames {
+    fn angles_rad(&self, model: &BodyModel, data: &StaticsData) -> [f64; ZONE_ROWS] {
+        let f = self;
+        let (r_pelvis, _) = data.link_pose(model, f.pelvis);
+        let (r_trunk, _) = data.link_pose(model, f.trunk);
+        let (r_head, _) = data.link_pose(model, f.head);
+        let x = r_pelvis * Vector3::x();
+        let h = Vector3::new(x.x, x.y, 0.0);
+        let fwd = if h.norm() > 1e-9 {
+            h.normalize()
+        } else {
+            Vector3::x()
+        };
+        let left = Vector3::z().cross(&fwd);
+        let a = r_trunk * Vector3::z();
+        let trunk = a.dot(&fwd).atan2(a.z);
+        let side = a.dot(&left).clamp(-1.0, 1.0).asin();
+        let rel = nalgebra::UnitQuaternion::from_matrix(&(r_pelvis.transpose() * r_trunk));
+        let twist = crate::body::stance::wrap_pi(2.0 * rel.k.atan2(rel.w));
+        let hw = r_head * Vector3::z();
+        let head = hw.dot(&fwd).atan2(hw.z);
+        let ht = r_trunk.transpose() * hw;
+        let neck = ht.x.atan2(ht.z);
+        let o = Vector3::zeros();
+        let arm = |i: usize| {
+            let s = data.link_point(model, f.upper[i], &o);
+            let e = data.link_point(model, f.fore[i], &o);
+            (-(e - s).normalize().z).clamp(-1.0, 1.0).acos()
+        };
+        [
+            trunk,
+            -trunk,
+            side,
+            -side,
+            twist,
+            -twist,
+            arm(0),
+            arm(1),
+            head,
+            -head,
+            neck,
+        ]
+    }
+
+    /// The rows `g ≤ 0` (radians beyond each limit, to first order) at the posture whose forward
+    /// kinematics `data` holds. The arms' rows are `(cos L − cos θ)/sin L`, smooth where the arm
+    /// hangs straight down.
+    fn rows(
+        &self,
+        model: &BodyModel,
+        data: &StaticsData,
+        limits: &ZoneLimits,
+        out: &mut [f64; ZONE_ROWS],
+    ) {
+        let f = self;
+        let ang = self.angles_rad(model, data);
+        let o = Vector3::zeros();
+        for (i, z) in Zone::ALL.iter().enumerate() {
+            let lim = limits.max_rad[i];
+            out[i] = match z {
+                Zone::RightUpperArm | Zone::LeftUpperArm => {
+                    let side = usize::from(*z == Zone::LeftUpperArm);
+                    let s = data.link_point(model, f.upper[side], &o);
+                    let e = data.link_point(model, f.fore[side], &o);
+                    let c = -(e - s).normalize().z;
+                    (lim.cos() - c) / lim.sin().max(1e-6)
+                }
+                _ => ang[i] - lim,
+            };
+        }
+    }
+}
+
+/// Evaluates the zone rows of a posture and their gradients (central differences of the forward
+/// kinematics over the joints that move the measured links), without allocating.
+#[derive(Debug, Clone)]
+pub struct ZoneWork {
+    frames: Frames,
+    data: StaticsData,
+    q: Vec<f64>,
+    /// q indices of the joints that move a measured link.
+    moving: Vec<usize>,
+}
+
+/// Central-difference step \[rad or m\].
+const FD_STEP: f64 = 1e-6;
+
+impl ZoneWork {
+    /// `None` for a body that is not the generated worker (no pelvis, trunk, head and arms).
+    pub fn new(model: &BodyModel) -> Option<Self> {
+        let link = |n: &str| model.frame_link(n).ok();
+        let frames = Frames {
+            pelvis: link("pelvis")?,
+            trunk: link("trunk")?,
+            head: link("head")?,
+            upper: [link("r_upper_arm")?, link("l_upper_arm")?],
+            fore: [link("r_forearm")?, link("l_forearm")?],
+        };
+        let links = [
+            frames.pelvis,
+            frames.trunk,
+            frames.head,
+            frames.upper[0],
+            frames.upper[1],
+            frames.fore[0],
+            frames.fore[1],
+        ];
+        let moving = (0..model.nq())
+            .filter(|&k| {
+                let j = model.joint_of_q[k];
+                links.iter().any(|&l| model.moves_link(j, l))
+            })
+            .collect();
+        Some(ZoneWork {
+            frames,
+            data: StaticsData::new(model, 0),
+            q: vec![0.0; model.nq()],
+            moving,
+        })
+    }
+
+    /// The angles \[rad\] of each zone (the value its limit bounds) at the posture whose forward
+    /// kinematics `data` holds.
+    pub fn angles_rad(&self, model: &BodyModel, data: &StaticsData) -> [f64; ZONE_ROWS] {
+        self.frames.angles_rad(model, data)
+    }
+
+    /// The rows `g ≤ 0` (radians beyond each limit, to first order) at the posture whose forward
+    /// kinematics `data` holds. The arms' rows are `(cos L − cos θ)/sin L`, smooth where the arm
+    /// hangs straight down.
+    pub fn rows(
+        &self,
+        model: &BodyModel,
+        data: &StaticsData,
+        limits: &ZoneLimits,
+        out: &mut [f64; ZONE_ROWS],
+    ) {
+        self.frames.rows(model, data, limits, out)
+    }
+
+    /// The rows at `q` and their gradients: `grad[i][k] = ∂g_i/∂q_k` (zero for joints that move
+    /// no measured link).
+    pub fn rows_and_gradients(
+        &mut self,
+        model: &BodyModel,
+        q: &[f64],
+        limits: &ZoneLimits,
+        g: &mut [f64; ZONE_ROWS],
+        grad: &mut [Vec<f64>; ZONE_ROWS],
+    ) {
+        self.q.copy_from_slice(q);
+        forward_kinematics(model, &mut self.data, &self.q);
+        self.frames.rows(model, &self.data, limits, g);
+        for row in grad.iter_mut() {
+            row.iter_mut().for_each(|v| *v = 0.0);
+        }
+        let (mut plus, mut minus) = ([0.0; ZONE_ROWS], [0.0; ZONE_ROWS]);
+        for idx in 0..self.moving.len() {
+            let k = self.moving[idx];
+            self.q[k] = q[k] + FD_STEP;
+            forward_kinematics(model, &mut self.data, &self.q);
+            self.frames.rows(model, &self.data, limits, &mut plus);
+            self.q[k] = q[k] - FD_STEP;
+            forward_kinematics(model, &mut self.data, &self.q);
+            self.frames.rows(model, &self.data, limits, &mut minus);
+            self.q[k] = q[k];
+            for i in 0..ZONE_ROWS {
+                grad[i][k] = (plus[i] - minus[i]) / (2.0 * FD_STEP);
+            }
+        }
+    }
+
+    /// The sum of the rows' violations \[rad\] at `q` (its own forward kinematics).
+    pub fn violation_rad(&mut self, model: &BodyModel, q: &[f64], limits: &ZoneLimits) -> f64 {
+        self.q.copy_from_slice(q);
+        forward_kinematics(model, &mut self.data, &self.q);
+        let mut g = [0.0; ZONE_ROWS];
+        self.frames.rows(model, &self.data, limits, &mut g);
+        g.iter().map(|v| v.max(0.0)).sum()
+    }
+
+    /// The zones posture `q` goes beyond by more than `tolerance_deg` (its own forward
+    /// kinematics).
+    pub fn excesses_at(
+        &mut self,
+        model: &BodyModel,
+        q: &[f64],
+        limits: &ZoneLimits,
+        tolerance_deg: f64,
+    ) -> Vec<Excess> {
+        self.q.copy_from_slice(q);
+        forward_kinematics(model, &mut self.data, &self.q);
+        self.excesses(model, &self.data, limits, tolerance_deg)
+    }
+
+    /// The zones the posture whose forward kinematics `data` holds goes beyond by more than
+    /// `tolerance_deg`.
+    pub fn excesses(
+        &self,
+        model: &BodyModel,
+        data: &StaticsData,
+        limits: &ZoneLimits,
+        tolerance_deg: f64,
+    ) -> Vec<Excess> {
+        let ang = self.angles_rad(model, data);
+        Zone::ALL
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| (ang[i] - limits.max_rad[i]).to_degrees() > tolerance_deg)
+            .map(|(i, &zone)| Excess {
+                zone,
+                angle_deg: ang[i].to_degrees(),
+                limit_deg: limits.max_rad[i].to_degrees(),
+            })
+            .collect()
+    }
+}
+
+/// Each phase's zone limits from its hold ([`Task::holds`]).
+pub fn phase_limits(task: &Task) -> Vec<ZoneLimits> {
+    task.holds()
+        .iter()
+        .map(|&(hold_s, _)| ZoneLimits::for_hold(hold_s))
+        .collect()
+}
