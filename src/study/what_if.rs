@@ -4,7 +4,9 @@
 //! in numbers what a workstation change would do ("raising the pallet 10 cm lowers …").
 //!
 //! The phase: the one with the highest L5/S1 compression when a phase exceeds NIOSH's action
-//! limit, else the one where the group whose capacity falls lowest holds its highest load. The
+//! limit, else the one whose posture the targets force farthest beyond the acceptable zones
+//! (ISO 11226 / EN 1005-4, summed excess), else the one where the group whose capacity falls
+//! lowest holds its highest load. The comparison gives the zones' summed excess first. The
 //! move: toward standing elbow height (0.630 × stature, Drillis & Contini 1966), by at most
 //! [`MAX_MOVE_M`]; no what-if when the target is already within [`NEAR_ELBOW_M`] of it.
 
@@ -31,6 +33,9 @@ pub struct Figures {
     pub back_compression_max_n: Option<f64>,
     pub capable_women: f64,
     pub exhausted: bool,
+    /// The postures' excess beyond ISO 11226 / EN 1005-4's acceptable zones, summed over the
+    /// cycle's phases and zones \[deg\] (`phases[].outside_zones`).
+    pub zone_excess_deg: f64,
 }
 
 /// `+12 %` from `a` to `b` ("from 0" when `a` is not positive).
@@ -50,12 +55,19 @@ pub fn relative_change(a: f64, b: f64) -> String {
 impl Figures {
     /// What changes from these figures to `after`, in words, one item per figure.
     pub fn changes_to(&self, after: &Figures) -> Vec<String> {
-        let mut v = vec![format!(
+        let mut v = Vec::new();
+        if self.zone_excess_deg > 0.0 || after.zone_excess_deg > 0.0 {
+            v.push(format!(
+                "postures beyond the acceptable zones (ISO 11226 / EN 1005-4) by {:.0}° → {:.0}° (summed over phases)",
+                self.zone_excess_deg, after.zone_excess_deg
+            ));
+        }
+        v.push(format!(
             "fatigue per hour {:.1} → {:.1} min/h ({})",
             self.u_per_hour_min,
             after.u_per_hour_min,
             relative_change(self.u_per_hour_min, after.u_per_hour_min)
-        )];
+        ));
         if let (Some(a), Some(b)) = (self.back_compression_max_n, after.back_compression_max_n) {
             v.push(format!("highest L5/S1 compression {a:.0} → {b:.0} N"));
         }
@@ -101,7 +113,25 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
         back_compression_max_n: a.back_compression_max_n,
         capable_women: a.capable_women,
         exhausted: s.exhaustion.is_some(),
+        zone_excess_deg: zone_excess_deg(plan),
     }
+}
+
+/// The plan's excess beyond the acceptable zones \[deg\], summed over phases and zones.
+fn zone_excess_deg(plan: &Plan) -> f64 {
+    (0..plan.summary.phases.len())
+        .map(|p| phase_zone_excess_deg(plan, p))
+        .sum()
+}
+
+/// Phase `p`'s excess beyond the acceptable zones \[deg\], summed over zones.
+fn phase_zone_excess_deg(plan: &Plan, p: usize) -> f64 {
+    plan.summary.phases.get(p).map_or(0.0, |x| {
+        x.outside_zones
+            .iter()
+            .map(|z| z.angle_deg - z.limit_deg)
+            .sum()
+    })
 }
 
 /// The phase a what-if moves (see the module documentation).
@@ -115,6 +145,15 @@ pub fn phase_to_move(task: &Task, plan: &Plan, a: &Assessment) -> Option<usize> 
             back(p).is_some_and(|b| b.compression_verdict != CompressionVerdict::WithinActionLimit)
         })
         .max_by(|&x, &y| compression(x).total_cmp(&compression(y)))
+    {
+        return Some(p);
+    }
+    // a posture the targets force beyond the acceptable zones: the largest excess
+    let excess = |p: usize| phase_zone_excess_deg(plan, p);
+    if plan.summary.zones
+        && let Some(p) = (0..n)
+            .filter(|&p| excess(p) > 0.0)
+            .max_by(|&x, &y| excess(x).total_cmp(&excess(y)))
     {
         return Some(p);
     }

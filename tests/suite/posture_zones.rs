@@ -221,3 +221,39 @@ fn planned_postures_keep_the_zones_the_targets_allow_and_report_the_rest() {
         assert_eq!(beyond, reported, "phase '{}'", ph.phase);
     }
 }
+
+/// A posture the targets force beyond a zone makes its phase the one "what would change it"
+/// moves, and lowering an overhead target lowers the forced excess: overhead drilling's arm is
+/// forced beyond 60° in both phases, most while drilling; that target moved 0.10 m down (toward
+/// elbow height) leaves less excess, as the geometry says it must (the same reach, lower).
+#[test]
+fn what_would_change_it_moves_the_phase_forced_farthest_beyond_a_zone() {
+    let t = task("overhead_drilling.yaml");
+    let opts = PlanOptions {
+        adapt: false,
+        baselines: false,
+        ..PlanOptions::default()
+    };
+    let p = plan_task_with(&t, opts).unwrap();
+    let excess = |i: usize| -> f64 {
+        p.summary.phases[i]
+            .outside_zones
+            .iter()
+            .map(|z| z.angle_deg - z.limit_deg)
+            .sum()
+    };
+    assert!(excess(0) > excess(1) && excess(1) > 0.0);
+    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
+        .unwrap()
+        .expect("a forced excess is a reason to move the work");
+    assert_eq!(w.phase, "drill hole");
+    assert!(w.dz_m < 0.0);
+    assert!((w.before.zone_excess_deg - (excess(0) + excess(1))).abs() < 1e-9);
+    assert!(
+        w.after.zone_excess_deg < w.before.zone_excess_deg,
+        "{} → {}",
+        w.before.zone_excess_deg,
+        w.after.zone_excess_deg
+    );
+}
