@@ -54,7 +54,7 @@
 //! first. A target farther than the body is long, or inside an obstacle, is a proven "cannot be
 //! done". Targets, clearances or balance the optimiser did not achieve without such proof make
 //! the verdict "not determined", with the reason. A feasible plan is a witness: a phase whose
-//! local solve did not converge (nor stall at a numerically stationary, feasible point:
+//! local solve did not converge (nor stop at a numerically stationary, feasible point:
 //! [`crate::plan::sqp::SqpOutcome::determined`]) leaves the verdict "acceptable" when the plan
 //! passes every criterion (a finished plan can only do better), and makes it "not determined"
 //! when the plan fails one (a finished plan may pass).

@@ -135,6 +135,8 @@ pub struct Planner<'t> {
     first_plan: Option<GroupPostures>,
     /// The nearest-to-neutral reaching postures (the first plan's start, a baseline).
     neutral: Option<GroupPostures>,
+    /// The least-squared-loads postures (a baseline, and a whole-plan start of the first plan).
+    min_load: Option<GroupPostures>,
     /// Cross-seeding rounds of a global search (set from [`PlanOptions::cross_seeding`]).
     cross_rounds: usize,
     /// Whether the first plan ends with a pool swap (set from [`PlanOptions::pool_swap`]).
@@ -224,6 +226,7 @@ impl<'t> Planner<'t> {
             rest_solve,
             first_plan: None,
             neutral: None,
+            min_load: None,
             pools: Vec::new(),
             swap: true,
             cross_rounds: CROSS_ROUNDS,
@@ -690,6 +693,13 @@ impl<'t> Planner<'t> {
         let mut gp =
             self.solve_independent(&mut || Box::new(NoLoadCost), 1.0, shape, fatigue_only)?;
         self.neutral = Some(gp.clone());
+        let min_load = self.solve_independent(
+            &mut || Box::new(SquaredLoads),
+            0.0,
+            Shape::of(self.task),
+            fatigue_only,
+        )?;
+        self.min_load = Some(min_load.clone());
         self.pools = vec![Vec::new(); self.groups.len()];
         let mut passes = self.optimise(&mut gp, state, cycles, fatigue_only, true, MAX_PASSES)?;
         let searched = gp.clone();
@@ -701,6 +711,21 @@ impl<'t> Planner<'t> {
                 passes.extend(more);
             } else {
                 gp = searched;
+            }
+        }
+        // The baselines that do not start from the plan are whole-plan starts: one that the
+        // search's plan does not beat on the plan's own objective (the search weighs postures one
+        // group at a time, the others held) is optimised further and kept if it ends lower.
+        for start in [self.neutral.clone(), Some(min_load)].into_iter().flatten() {
+            let j = passes.last().copied().unwrap_or(f64::INFINITY);
+            if self.total_objective(&start, state, cycles, fatigue_only) < j {
+                let mut other = start;
+                let more =
+                    self.optimise(&mut other, state, cycles, fatigue_only, false, MAX_PASSES)?;
+                if more.last().is_some_and(|&m| m < j) {
+                    gp = other;
+                    passes.extend(more);
+                }
             }
         }
         Ok((gp, passes))
@@ -731,14 +756,7 @@ impl<'t> Planner<'t> {
         main: &Plan,
         opts: PlanOptions,
     ) -> Result<Vec<BaselineSummary>, PlanError> {
-        let t = self.task;
-        let nh = t.half_joints.len();
-        let fresh = vec![MaState::FRESH; nh];
-        let held = PlanOptions {
-            adapt: false,
-            baselines: false,
-            ..opts
-        };
+        let fresh = vec![MaState::FRESH; self.task.half_joints.len()];
         let mut out = Vec::new();
         let blind = {
             let mut gp = self
@@ -753,23 +771,18 @@ impl<'t> Planner<'t> {
                 false,
                 BASELINE_PASSES,
             )?;
-            Some(self.simulate(gp, passes, held)?)
+            self.held_baseline(gp, passes, opts)?
         };
-        let weight_free = 0.0;
-        let gp = self.solve_independent(
-            &mut || Box::new(SquaredLoads),
-            weight_free,
-            Shape::of(t),
-            opts.fatigue_only,
-        )?;
-        let min_load = self.simulate(gp, Vec::new(), held)?;
+        let gp = self.min_load.clone().expect("the main plan was made first");
+        let min_load = self.held_baseline(gp, Vec::new(), opts)?;
         let gp = self.neutral.clone().expect("the main plan was made first");
-        let neutral = self.simulate(gp, Vec::new(), held)?;
+        let neutral = self.held_baseline(gp, Vec::new(), opts)?;
         let total = main.summary.total_u;
-        let mut push = |name: &str, description: &str, p: &Plan| {
+        let mut push = |name: &str, description: &str, (objective, p): &(f64, Plan)| {
             out.push(BaselineSummary {
                 name: name.into(),
                 description: description.into(),
+                objective: *objective,
                 total_u: p.summary.total_u,
                 duration_s: p.summary.duration_s,
                 exhaustion: p.summary.exhaustion.clone(),
@@ -780,13 +793,11 @@ impl<'t> Planner<'t> {
                 },
             });
         };
-        if let Some(b) = &blind {
-            push(
-                "fatigue_unaware",
-                "the same optimiser with fresh capacities and a one-cycle horizon, held all task",
-                b,
-            );
-        }
+        push(
+            "fatigue_unaware",
+            "the same optimiser with fresh capacities and a one-cycle horizon, held all task",
+            &blind,
+        );
         push(
             "minimum_joint_load",
             "least sum of squared relative loads per phase, held all task",
@@ -798,6 +809,24 @@ impl<'t> Planner<'t> {
             &neutral,
         );
         Ok(out)
+    }
+
+    /// A baseline's postures held all task: the first plan's objective at them (fresh, the
+    /// whole task) and the simulated plan.
+    fn held_baseline(
+        &mut self,
+        gp: GroupPostures,
+        passes: Vec<f64>,
+        opts: PlanOptions,
+    ) -> Result<(f64, Plan), PlanError> {
+        let fresh = vec![MaState::FRESH; self.task.half_joints.len()];
+        let j = self.total_objective(&gp, &fresh, self.task.cycles as u64, opts.fatigue_only);
+        let held = PlanOptions {
+            adapt: false,
+            baselines: false,
+            ..opts
+        };
+        Ok((j, self.simulate(gp, passes, held)?))
     }
 
     /// Holds the postures cycle by cycle with exact fatigue updates, re-planning when adaptive.

@@ -163,6 +163,9 @@ pub struct BaselineSummary {
     pub total_u: f64,
     pub duration_s: f64,
     pub exhaustion: Option<Exhaustion>,
+    /// The plan's own objective (its first plan's: fresh, the whole task, held) at this
+    /// baseline's postures; the plan's is the last of `passes`.
+    pub objective: f64,
     /// posture-opt's total relative to this one's (−0.2 = 20 % less fatigue).
     pub change: f64,
 }

@@ -216,7 +216,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             if ph.converged {
                 "converged"
             } else if ph.solve.determined() {
-                "stationary to the objective's precision (no step lowers it)"
+                "stationary to the objective's precision"
             } else {
                 "NOT converged"
             },

@@ -122,13 +122,18 @@ fn solver_status_decides_what_may_be_said() {
     ph.converged = false;
     ph.solve.converged = false;
     ph.solve.stop = Stop::IterationLimit;
-    ph.solve.kkt_residual = 1e-6;
+    ph.solve.feasibility = 1e-12;
+    ph.solve.kkt_residual = 10.0 * STALL_KKT;
     let v = assess(t, &q, 0.7).verdict;
     assert_eq!(v.status, Status::NotDetermined);
     assert!(v.headline.starts_with("not determined"), "{}", v.headline);
     assert!(v.headline.contains("hold panel"), "{}", v.headline);
     assert!(v.headline.contains("iteration limit"), "{}", v.headline);
     assert!(v.binding.is_none());
+    // the iteration limit at a feasible point within STALL_KKT is determined: the residual, not
+    // why the solver stopped, says whether the point is stationary
+    q.summary.phases[0].solve.kkt_residual = 0.5 * STALL_KKT;
+    assert_ne!(assess(t, &q, 0.7).verdict.status, Status::NotDetermined);
     // a stall far from stationarity is not determined either; one at a feasible point within
     // STALL_KKT is (the objective's rounding stops the descent there)
     let ph = &mut q.summary.phases[0];
