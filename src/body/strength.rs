@@ -75,11 +75,15 @@ pub struct MeanSd {
 }
 
 /// A posture factor on the mean: `factor` at `deg` of `joint` (same side as the muscle group
-/// when written without a side prefix).
+/// when written without a side prefix), or of the sum of `joint`'s and `plus`'s angles.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PostureCurve {
     pub joint: String,
+    /// Joints whose angles add to `joint`'s (same naming rule): the curve's angle is the sum,
+    /// e.g. `lumbar_flexion` plus `pelvis_tilt`, the trunk's forward inclination from upright.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub plus: Vec<String>,
     pub deg: Vec<f64>,
     pub factor: Vec<f64>,
 }
@@ -377,11 +381,20 @@ impl Pchip {
     }
 }
 
-/// A posture factor resolved onto a model: the q index of its joint and its curve (radians).
+/// A posture factor resolved onto a model: the q indices of the joints whose angles it sums
+/// (usually one) and its curve (radians).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PostureFactor {
-    pub q_index: usize,
+    pub q_indices: Vec<usize>,
     pub curve: Pchip,
+}
+
+impl PostureFactor {
+    /// The curve's angle at `q_rad` \[rad\].
+    #[inline]
+    pub fn angle(&self, q_rad: &[f64]) -> f64 {
+        self.q_indices.iter().map(|&i| q_rad[i]).sum()
+    }
 }
 
 /// A resolved half-joint of a body model for one worker.
@@ -413,7 +426,7 @@ impl HalfJoint {
     pub fn posture_factor(&self, q_rad: &[f64]) -> f64 {
         self.posture
             .iter()
-            .map(|p| p.curve.eval(q_rad[p.q_index]).0)
+            .map(|p| p.curve.eval(p.angle(q_rad)).0)
             .product()
     }
 
@@ -427,13 +440,13 @@ impl HalfJoint {
         }
     }
 
-    /// ∂MVC/∂q as (q index, value) pairs at `q_rad`.
+    /// ∂MVC/∂q as (q index, value) pairs at `q_rad`, one pair per index.
     pub fn mvc_gradient(&self, q_rad: &[f64], out: &mut Vec<(usize, f64)>) {
         out.clear();
         let vals: Vec<(f64, f64)> = self
             .posture
             .iter()
-            .map(|p| p.curve.eval(q_rad[p.q_index]))
+            .map(|p| p.curve.eval(p.angle(q_rad)))
             .collect();
         for (k, p) in self.posture.iter().enumerate() {
             let others: f64 = vals
@@ -442,7 +455,13 @@ impl HalfJoint {
                 .filter(|(j, _)| *j != k)
                 .map(|(_, v)| v.0)
                 .product();
-            out.push((p.q_index, self.mvc_nm * vals[k].1 * others));
+            let d = self.mvc_nm * vals[k].1 * others;
+            for &i in &p.q_indices {
+                match out.iter_mut().find(|(j, _)| *j == i) {
+                    Some((_, v)) => *v += d,
+                    None => out.push((i, d)),
+                }
+            }
         }
     }
 
@@ -530,21 +549,32 @@ pub fn resolve_half_joints(
                 Some((e, side)) => {
                     let mut posture = Vec::with_capacity(e.posture.len());
                     for c in &e.posture {
-                        let name = match side {
-                            Some(s) if model.q_index(&c.joint).is_err() => {
-                                format!("{}{}", s.prefix(), c.joint)
+                        let mut q_indices = Vec::with_capacity(1 + c.plus.len());
+                        for joint in std::iter::once(&c.joint).chain(&c.plus) {
+                            let name = match side {
+                                Some(s) if model.q_index(joint).is_err() => {
+                                    format!("{}{}", s.prefix(), joint)
+                                }
+                                _ => joint.clone(),
+                            };
+                            let qi = model.q_index(&name).map_err(|_| StrengthError::Joint {
+                                path: origin.into(),
+                                joint: j.name.clone(),
+                                problem: format!(
+                                    "posture curve names joint '{name}', which the robot does not have"
+                                ),
+                            })?;
+                            if q_indices.contains(&qi) {
+                                return Err(StrengthError::Joint {
+                                    path: origin.into(),
+                                    joint: j.name.clone(),
+                                    problem: format!("posture curve names joint '{name}' twice"),
+                                });
                             }
-                            _ => c.joint.clone(),
-                        };
-                        let qi = model.q_index(&name).map_err(|_| StrengthError::Joint {
-                            path: origin.into(),
-                            joint: j.name.clone(),
-                            problem: format!(
-                                "posture curve names joint '{name}', which the robot does not have"
-                            ),
-                        })?;
+                            q_indices.push(qi);
+                        }
                         posture.push(PostureFactor {
-                            q_index: qi,
+                            q_indices,
                             curve: Pchip::new(
                                 c.deg.iter().map(|d| d.to_radians()).collect(),
                                 c.factor.clone(),

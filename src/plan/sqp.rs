@@ -269,9 +269,16 @@ impl SqpWork {
                     Direction::Positive => row,
                     Direction::Negative => a + row,
                 };
-                Some(hj.posture.iter().map(move |p| (split, p.q_index)))
+                Some(
+                    hj.posture
+                        .iter()
+                        .flat_map(|p| p.q_indices.iter())
+                        .map(move |&k| (split, k)),
+                )
             })
             .flatten()
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
             .collect();
         Ok(SqpWork {
             qp: PostureQp::new(sizes, settings.precision, &capacity_q)?,

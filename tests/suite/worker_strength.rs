@@ -1407,3 +1407,62 @@ fn misspelt_strength_entries_are_refused() {
         assert!(e.contains("bad.strength.yaml") && e.contains(expect), "{e}");
     }
 }
+
+/// A posture curve may be keyed on a sum of joint angles (`plus`): the trunk extensors' curve on
+/// the trunk's inclination, pelvis tilt + lumbar flexion. The factor is the curve at the sum,
+/// the gradient has equal entries for both joints (checked against finite differences), and a
+/// joint named twice is refused.
+#[test]
+fn a_posture_curve_on_a_sum_of_joint_angles() {
+    let w = Worker::MALE_50;
+    let m = generate(&w);
+    let shipped = half_joints(&w);
+    let table = posture_opt::body::strength::DEFAULT_TABLE_YAML;
+    let from = "- {joint: lumbar_flexion, deg: [-25, 0, 20, 36, 50, 80], factor: [0.85, 1.00, 1.35, 1.68, 1.75, 1.60]}";
+    assert!(table.contains(from), "the trunk extensors' curve changed");
+    let summed = from.replace("lumbar_flexion,", "lumbar_flexion, plus: [pelvis_tilt],");
+    let t = StrengthTable::from_yaml_str(&table.replacen(from, &summed, 1), "sum.strength.yaml")
+        .unwrap();
+    let hj = resolve_half_joints(&m, &t, &w, "sum.strength.yaml").unwrap();
+    let id = |v: &[HalfJoint]| v.iter().position(|h| h.id == "lumbar_flexion-").unwrap();
+    let (h, h0) = (&hj[id(&hj)], &shipped[id(&shipped)]);
+    // 15° of pelvis tilt and 25° of lumbar flexion: the shipped curve's factor at 40°
+    let both = factor_at(&m, h, &[("pelvis_tilt", 15.0), ("lumbar_flexion", 25.0)]);
+    let lumbar_only = factor_at(&m, h0, &[("lumbar_flexion", 40.0)]);
+    assert!(
+        (both - lumbar_only).abs() < 1e-12,
+        "{both} vs {lumbar_only}"
+    );
+    assert!((factor_at(&m, h0, &[("pelvis_tilt", 15.0)]) - 1.0).abs() < 1e-12);
+    let mut q = vec![0.0; m.nq()];
+    let (tilt, lumbar) = (
+        m.q_index("pelvis_tilt").unwrap(),
+        m.q_index("lumbar_flexion").unwrap(),
+    );
+    q[tilt] = 0.3;
+    q[lumbar] = 0.2;
+    let mut grad = Vec::new();
+    h.mvc_gradient(&q, &mut grad);
+    assert_eq!(grad.len(), 2, "{grad:?}");
+    for &(k, g) in &grad {
+        assert!(k == tilt || k == lumbar);
+        let e = 1e-6;
+        let (mut qp, mut qm) = (q.clone(), q.clone());
+        qp[k] += e;
+        qm[k] -= e;
+        let fd = (h.mvc_at(&qp) - h.mvc_at(&qm)) / (2.0 * e);
+        assert!((g - fd).abs() < 1e-6 * h.mvc_nm, "∂/∂q{k}: {g} vs {fd}");
+        assert!(g.abs() > 1.0, "the curve is not flat at 29°");
+    }
+    assert!((grad[0].1 - grad[1].1).abs() < 1e-12);
+    let twice = from.replace("lumbar_flexion,", "lumbar_flexion, plus: [lumbar_flexion],");
+    let t = StrengthTable::from_yaml_str(&table.replacen(from, &twice, 1), "twice.strength.yaml")
+        .unwrap();
+    let e = resolve_half_joints(&m, &t, &w, "twice.strength.yaml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("twice.strength.yaml") && e.contains("twice"),
+        "{e}"
+    );
+}
