@@ -41,7 +41,7 @@ use super::objective::{
 use super::posture::{Other, PostureWork};
 use super::qp::QpError;
 use super::result::*;
-use super::search::{PhaseSolver, PhaseSpec, SearchStats};
+use super::search::{PhaseSolver, PhaseSpec, SearchSettings, SearchStats};
 use super::sqp::{SqpOutcome, SqpSettings};
 use super::stepping::{self, Stepping};
 use super::task::Task;
@@ -88,6 +88,8 @@ pub struct PlanOptions {
     /// searched plan.
     pub pool_swap: bool,
     pub sqp: SqpSettings,
+    /// The multi-start's settings.
+    pub search: SearchSettings,
 }
 
 impl Default for PlanOptions {
@@ -100,6 +102,7 @@ impl Default for PlanOptions {
             cross_seeding: true,
             pool_swap: true,
             sqp: SqpSettings::default(),
+            search: SearchSettings::default(),
         }
     }
 }
@@ -739,6 +742,7 @@ impl<'t> Planner<'t> {
         self.qp_solves_before = self.solver.work.qp.solves;
         self.solver.settings = opts.sqp;
         self.solver.work.settings = opts.sqp;
+        self.solver.search = opts.search;
         self.cross_rounds = if opts.cross_seeding { CROSS_ROUNDS } else { 0 };
         self.swap = opts.pool_swap;
         self.zones_on = opts.zones;

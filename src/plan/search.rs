@@ -29,6 +29,9 @@ pub struct SearchSettings {
     pub screen_iterations: usize,
     /// Seeds solved to convergence.
     pub finalists: usize,
+    /// Screen the starts in reverse order (ties between equally good starts then go the other
+    /// way): a plan that changes with it depends on the order of its seeds, not on the problem.
+    pub reversed: bool,
 }
 
 impl Default for SearchSettings {
@@ -36,6 +39,7 @@ impl Default for SearchSettings {
         SearchSettings {
             screen_iterations: 3,
             finalists: 2,
+            reversed: false,
         }
     }
 }
@@ -284,6 +288,9 @@ impl<'t> PhaseSolver<'t> {
                 s,
                 IkSettings::default(),
             );
+        }
+        if self.search.reversed {
+            starts.reverse();
         }
         let full = self.settings;
         if starts.len() == 1 {
