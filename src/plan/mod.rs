@@ -10,9 +10,11 @@
 //! * [`result`]: the plan document;
 //! * [`held`]: the held object against the worker's own body (a collision of its phase);
 //! * [`stepping`]: the feet's poses, the steps between phases, their cost and words;
+//! * [`asymmetry`]: working off to the side of the feet, priced like NIOSH's multiplier;
 //! * [`reach`]: when a target is provably out of reach (beyond the kinematic chain's length);
 //! * [`zones`]: the standards' acceptable posture zones, as elastic constraints.
 
+pub mod asymmetry;
 pub mod held;
 pub mod ik;
 pub mod objective;

@@ -35,6 +35,7 @@
 //! joint load (sum of squared relative loads), and the nearest-to-neutral posture reaching the
 //! targets (discomfort only).
 
+use super::asymmetry::Asymmetry;
 use super::objective::{
     AT_LIMIT_FRACTION, Discomfort, FatigueCost, LoadCost, NoLoadCost, Shape, SquaredLoads,
 };
@@ -48,7 +49,7 @@ use super::task::Task;
 use super::zones::{self, ZONE_PENALTY_PER_RAD, ZoneLimits, ZoneWork};
 use crate::body::stance::FeetNow;
 use crate::fatigue::{MaParams, MaState};
-use nalgebra::Vector3;
+use nalgebra::{Vector2, Vector3};
 
 /// Why planning failed (an internal failure: the task was already validated).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -73,7 +74,8 @@ pub struct PlanOptions {
     /// Re-plan as capacity falls (false: the first plan, optimal for the whole task with each
     /// phase's posture held throughout, is held).
     pub adapt: bool,
-    /// Minimise fatigue only (no discomfort term, no posture zones, no step cost).
+    /// Minimise fatigue only (no discomfort term, no step cost, no asymmetry cost); the posture
+    /// zones are constraints and stay unless [`Self::zones`] is false.
     pub fatigue_only: bool,
     /// Keep the postures within the acceptable zones of ISO 11226 and EN 1005-4
     /// ([`super::zones`]; false: the unconstrained optimum, for comparison).
@@ -306,19 +308,53 @@ impl<'t> Planner<'t> {
         stepping::feet_of(self.task, &self.solver.pw)
     }
 
+    /// Whether the planner places the feet (the task gives a standing area).
+    fn feet_placed(&self) -> bool {
+        self.task
+            .stance
+            .as_ref()
+            .is_some_and(|s| s.placement.is_some())
+    }
+
     /// The step cost's weight: the task's, when the planner places the feet and the objective
     /// is not fatigue alone.
     fn step_weight(&self, fatigue_only: bool) -> f64 {
-        let placed = self
-            .task
-            .stance
-            .as_ref()
-            .is_some_and(|s| s.placement.is_some());
-        if fatigue_only || !placed {
+        if fatigue_only || !self.feet_placed() {
             0.0
         } else {
             self.task.objective.step_weight
         }
+    }
+
+    /// The asymmetry cost's weight: the task's, when the planner places the feet and the
+    /// objective is not fatigue alone.
+    fn asymmetry_weight(&self, fatigue_only: bool) -> f64 {
+        if fatigue_only || !self.feet_placed() {
+            0.0
+        } else {
+            self.task.objective.asymmetry_weight
+        }
+    }
+
+    /// The asymmetry cost of group `g`'s posture: each of its phases' load centre, at the
+    /// weight's share per phase of the cycle.
+    fn asymmetry_for(&self, g: usize, fatigue_only: bool) -> Asymmetry {
+        let w = self.asymmetry_weight(fatigue_only);
+        if w == 0.0 {
+            return Asymmetry::default();
+        }
+        let per_phase = w / self.task.phases.len() as f64;
+        let loads = self.groups[g]
+            .iter()
+            .filter_map(|&p| {
+                let t: Vec<_> = self.task.phases[p].targets_m.iter().flatten().collect();
+                (!t.is_empty()).then(|| {
+                    let c = t.iter().fold(Vector3::zeros(), |a, &b| a + b) / t.len() as f64;
+                    (Vector2::new(c.x, c.y), per_phase)
+                })
+            })
+            .collect();
+        Asymmetry { loads }
     }
 
     /// The step cost of group `g` against its neighbouring states in the cycle (the phase
@@ -326,8 +362,12 @@ impl<'t> Planner<'t> {
     /// other groups' postures `gp` held.
     fn stepping_for(&mut self, g: usize, gp: &GroupPostures, fatigue_only: bool) -> Stepping {
         let weight = self.step_weight(fatigue_only);
+        let asymmetry = self.asymmetry_for(g, fatigue_only);
         if weight == 0.0 {
-            return Stepping::default();
+            return Stepping {
+                asymmetry,
+                ..Stepping::default()
+            };
         }
         let rest = self.solver.q_rest.clone();
         let np = self.task.phases.len();
@@ -353,18 +393,31 @@ impl<'t> Planner<'t> {
                 neighbours.push((f, 1.0));
             }
         }
-        Stepping { weight, neighbours }
+        Stepping {
+            weight,
+            neighbours,
+            asymmetry,
+        }
     }
 
-    /// The step cost of a whole cycle with postures `gp`.
+    /// The step and asymmetry costs of a whole cycle with postures `gp`.
     fn cycle_step_cost(&mut self, gp: &GroupPostures, fatigue_only: bool) -> f64 {
+        let mut asym = 0.0;
+        for g in 0..self.groups.len() {
+            let a = self.asymmetry_for(g, fatigue_only);
+            if !a.loads.is_empty()
+                && let Some(f) = self.feet_at(&gp.q[g].clone())
+            {
+                asym += a.value(&f);
+            }
+        }
         let weight = self.step_weight(fatigue_only);
         if weight == 0.0 {
-            return 0.0;
+            return asym;
         }
         let rest = self.solver.q_rest.clone();
         let Some(rest_feet) = self.feet_at(&rest) else {
-            return 0.0;
+            return asym;
         };
         let mut feet = Vec::with_capacity(self.task.phases.len());
         for p in 0..self.task.phases.len() {
@@ -372,7 +425,7 @@ impl<'t> Planner<'t> {
             let q = gp.q[g].clone();
             feet.extend(self.feet_at(&q));
         }
-        stepping::cycle_cost(self.task, weight, &rest_feet, &feet)
+        asym + stepping::cycle_cost(self.task, weight, &rest_feet, &feet)
     }
 
     /// The whole objective for postures `gp`: fatigue J plus the groups' weighted discomfort
@@ -419,10 +472,10 @@ impl<'t> Planner<'t> {
         (j, d + self.cycle_step_cost(gp, fatigue_only) + z)
     }
 
-    /// The posture zones group `g` keeps: `None` when the objective is fatigue alone or the
-    /// plan is asked without them.
-    fn zones_for(&self, g: usize, fatigue_only: bool) -> Option<ZoneLimits> {
-        (self.zones_on && !fatigue_only && self.zone_work.is_some()).then(|| self.group_zones[g])
+    /// The posture zones group `g` keeps: `None` when the plan is asked without them. They are
+    /// constraints, not comfort: a fatigue-only plan keeps them too.
+    fn zones_for(&self, g: usize, _fatigue_only: bool) -> Option<ZoneLimits> {
+        (self.zones_on && self.zone_work.is_some()).then(|| self.group_zones[g])
     }
 
     /// The zones' penalty of group `g` at posture `q` (the objective's term).
@@ -654,12 +707,17 @@ impl<'t> Planner<'t> {
             let mut q = gp.q[g].clone();
             // steps from and back to the rest stance
             let weight = self.step_weight(false);
+            let asymmetry = self.asymmetry_for(g, false);
             self.solver.stepping = match self.feet_at(&self.solver.q_rest.clone()) {
                 Some(f) if weight > 0.0 => Stepping {
                     weight,
                     neighbours: vec![(f, 2.0)],
+                    asymmetry,
                 },
-                _ => Stepping::default(),
+                _ => Stepping {
+                    asymmetry,
+                    ..Stepping::default()
+                },
             };
             let (out, stats) = self
                 .solver
@@ -1039,7 +1097,7 @@ impl<'t> Planner<'t> {
             summary: Summary {
                 adaptive: opts.adapt,
                 fatigue_only: opts.fatigue_only,
-                zones: opts.zones && !opts.fatigue_only && self.zone_work.is_some(),
+                zones: opts.zones && self.zone_work.is_some(),
                 duration_s: time,
                 planned_duration_s: t.duration_s(),
                 cycles_done,

@@ -175,8 +175,7 @@ pub struct BaselineSummary {
 pub struct Summary {
     pub adaptive: bool,
     pub fatigue_only: bool,
-    /// Whether the postures were kept within the acceptable zones (off with `--no-zones` and
-    /// with `--fatigue-only`).
+    /// Whether the postures were kept within the acceptable zones (off with `--no-zones`).
     pub zones: bool,
     pub duration_s: f64,
     pub planned_duration_s: f64,

@@ -362,7 +362,7 @@ fn merit(
     let mut zone_g = [0.0; ZONE_ROWS];
     let mut zone_l1 = 0.0;
     if let (Some(z), Some(lim)) = (&work.zone_work, &prob.zones) {
-        z.rows(&task.model, &pw.data, lim, &mut zone_g);
+        z.rows(&task.model, &pw.data, q, lim, &mut zone_g);
         zone_l1 = zone_g.iter().map(|g| g.max(0.0)).sum();
     }
     let j = prob.cost.value(&work.f)

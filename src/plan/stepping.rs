@@ -10,12 +10,13 @@
 //! task's `objective.step_weight` in the objective's units (the fatigue term is the logarithm of
 //! the total fatigue index: a weight of 0.01 makes one step worth 1 % of the task's fatigue).
 
+use super::asymmetry::Asymmetry;
 use super::posture::PostureWork;
 use super::task::Task;
 use crate::body::JointKind;
 use crate::body::stance::{FeetNow, wrap_pi};
 use crate::body::{BodyModel, StaticsData};
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use serde::Serialize;
 
 /// `D₀` of the step cost \[m\]: a foot moved this far costs half a step.
@@ -126,52 +127,59 @@ pub fn describe(before: &FeetNow, now: &FeetNow) -> PhaseFeet {
     }
 }
 
-/// The step cost of one posture against the fixed feet of its neighbouring states.
+/// The costs of where one posture puts the feet: its steps against the fixed feet of its
+/// neighbouring states, and its phases' asymmetry ([`super::asymmetry`]).
 #[derive(Debug, Clone, Default)]
 pub struct Stepping {
     /// Cost of one step (objective units); 0 turns the cost off.
     pub weight: f64,
     /// The neighbouring states' feet, each with how many transitions it stands for.
     pub neighbours: Vec<(FeetNow, f64)>,
+    /// The asymmetry of the posture's phases (no loads: off).
+    pub asymmetry: Asymmetry,
 }
 
 impl Stepping {
     /// The cost of standing on `feet` (see the module docs).
     pub fn value(&self, task: &Task, feet: &FeetNow) -> f64 {
-        if self.weight == 0.0 {
-            return 0.0;
-        }
         let Some(st) = &task.stance else { return 0.0 };
         let mut v = 0.0;
-        for (nb, mult) in &self.neighbours {
-            for i in 0..2 {
-                let x = travel2(feet, nb, i, st.feet[i].half_length_m);
-                v += mult * x / (x + STEP_SCALE_M * STEP_SCALE_M);
+        if self.weight != 0.0 {
+            for (nb, mult) in &self.neighbours {
+                for i in 0..2 {
+                    let x = travel2(feet, nb, i, st.feet[i].half_length_m);
+                    v += mult * x / (x + STEP_SCALE_M * STEP_SCALE_M);
+                }
             }
         }
-        self.weight * v
+        self.weight * v + self.asymmetry.value(feet)
     }
 
     /// Adds the cost's gradient in q at the forward kinematics in `data` to `grad`.
     pub fn add_gradient(&self, task: &Task, data: &StaticsData, feet: &FeetNow, grad: &mut [f64]) {
-        if self.weight == 0.0 || self.neighbours.is_empty() {
+        let steps = self.weight != 0.0 && !self.neighbours.is_empty();
+        if !steps && self.asymmetry.loads.is_empty() {
             return;
         }
         let Some(st) = &task.stance else { return };
         let m: &BodyModel = &task.model;
         let d02 = STEP_SCALE_M * STEP_SCALE_M;
+        let (gc_asym, gpsi_asym) = self.asymmetry.feet_gradient(feet);
         for i in 0..2 {
             let f = &st.feet[i];
             let l = f.half_length_m;
-            // ∂(travel²)/∂(c, ψ) summed over the neighbours, weighted by φ′
-            let (mut gc, mut gpsi) = (Vector2::zeros(), 0.0);
-            for (nb, mult) in &self.neighbours {
-                let x = travel2(feet, nb, i, l);
-                let dphi = d02 / ((x + d02) * (x + d02));
-                let dc = feet.sole_center_m[i] - nb.sole_center_m[i];
-                let dpsi = wrap_pi(feet.yaw_rad[i] - nb.yaw_rad[i]);
-                gc += self.weight * mult * dphi * 2.0 * dc;
-                gpsi += self.weight * mult * dphi * 2.0 * l * l * dpsi;
+            // ∂(cost)/∂(c, ψ): the steps' travel² summed over the neighbours, weighted by φ′,
+            // and the asymmetry's
+            let (mut gc, mut gpsi) = (gc_asym[i], gpsi_asym[i]);
+            if steps {
+                for (nb, mult) in &self.neighbours {
+                    let x = travel2(feet, nb, i, l);
+                    let dphi = d02 / ((x + d02) * (x + d02));
+                    let dc = feet.sole_center_m[i] - nb.sole_center_m[i];
+                    let dpsi = wrap_pi(feet.yaw_rad[i] - nb.yaw_rad[i]);
+                    gc += self.weight * mult * dphi * 2.0 * dc;
+                    gpsi += self.weight * mult * dphi * 2.0 * l * l * dpsi;
+                }
             }
             let c3: Vector3<f64> = data.link_point(m, f.link, &f.sole_center_in_link_m);
             let x = data.link_pose(m, f.link).0 * Vector3::x();
@@ -212,6 +220,7 @@ pub fn cycle_cost(task: &Task, weight: f64, rest: &FeetNow, phases: &[FeetNow]) 
         let s = Stepping {
             weight,
             neighbours: vec![(before, 1.0)],
+            asymmetry: Asymmetry::default(),
         };
         v += s.value(task, f);
         before = *f;

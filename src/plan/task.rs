@@ -338,10 +338,19 @@ pub struct ObjectiveFile {
     /// the task's fatigue; default 0.01, 0..10). Only where the planner places the feet.
     #[serde(default = "default_step_weight")]
     pub step_weight: f64,
+    /// Weight of the asymmetry cost: each phase's angle between the hands' load and the feet's
+    /// mid-sagittal plane priced as `−ln` of NIOSH's asymmetry multiplier `1 − 0.0032·A`, the
+    /// mean over the cycle's phases (default 1: a cycle done wholly at A counts as its fatigue
+    /// divided by the multiplier; 0..10). Only where the planner places the feet.
+    #[serde(default = "default_asymmetry_weight")]
+    pub asymmetry_weight: f64,
 }
 
 fn default_step_weight() -> f64 {
     0.01
+}
+fn default_asymmetry_weight() -> f64 {
+    1.0
 }
 fn default_discomfort() -> f64 {
     0.1
@@ -361,6 +370,7 @@ impl Default for ObjectiveFile {
             clearance_m: default_clearance(),
             balance_margin_m: default_margin(),
             step_weight: default_step_weight(),
+            asymmetry_weight: default_asymmetry_weight(),
         }
     }
 }
@@ -443,6 +453,8 @@ pub struct ObjectiveSettings {
     pub balance_margin_m: f64,
     /// Cost of one step between consecutive phases (objective units).
     pub step_weight: f64,
+    /// Weight of the NIOSH-shaped asymmetry cost (objective units).
+    pub asymmetry_weight: f64,
 }
 
 /// A validated task.
@@ -1045,6 +1057,12 @@ impl Task {
                 format!("must be within 0..10, got {}", o.step_weight),
             ));
         }
+        if !(o.asymmetry_weight.is_finite() && (0.0..=10.0).contains(&o.asymmetry_weight)) {
+            return Err(field(
+                "objective.asymmetry_weight",
+                format!("must be within 0..10, got {}", o.asymmetry_weight),
+            ));
+        }
         let head = Head::of(&model);
         Ok(Task {
             head,
@@ -1076,6 +1094,7 @@ impl Task {
                 clearance_m: o.clearance_m,
                 balance_margin_m: o.balance_margin_m,
                 step_weight: o.step_weight,
+                asymmetry_weight: o.asymmetry_weight,
             },
             lifts,
         })

@@ -6,7 +6,10 @@
 //! it ([`crate::assess::angles`]): the trunk's long axis against the vertical in the body's
 //! sagittal plane (forward positive) and out of it (side bending), the thorax's twist against the
 //! pelvis, each upper arm's angle against straight down, the head's long axis against the
-//! vertical, and the neck's flexion (head against trunk). The limits ([`ZoneLimits::for_hold`]):
+//! vertical, the neck's flexion (head against trunk), and each wrist's flexion and deviation
+//! joints. The wrists' rows keep near-ties apart: without them a bent and a straight wrist
+//! can reach a target for about the same fatigue, and which one a plan takes depended on the
+//! search's path (shelf's 'place high board', 1 % apart). The limits ([`ZoneLimits::for_hold`]):
 //!
 //! | zone | limit | source |
 //! |---|---|---|
@@ -16,6 +19,8 @@
 //! | upper-arm elevation | 20° for 3 min or more, 60° for 1 min or less, linear in between; 60° for movements | ISO 11226 Fig. 3; EN 1005-4 |
 //! | head inclination | 85° forward, 5° back | ISO 11226 |
 //! | neck flexion | 25° | ISO 11226 |
+//! | wrist flexion, extension | 15° each way ([`WRIST_FLEXION_DEG`]) | RULA; REBA |
+//! | wrist radial, ulnar deviation | 10° each way ([`WRIST_DEVIATION_DEG`], ASSUMPTION) | RULA |
 //!
 //! A phase's hold is the run of consecutive phases of the same work it belongs to
 //! ([`Task::holds`]); a hold of 4 s or less is a movement (EN 1005-4). ASSUMPTION: the planner
@@ -37,8 +42,20 @@ use nalgebra::Vector3;
 /// less is not visible to an observer).
 pub const ISO_BACKWARD_TOLERANCE_DEG: f64 = 5.0;
 
+/// Wrist flexion or extension beyond this is scored as bent \[deg\]: RULA (McAtamney & Corlett
+/// 1993, Appl Ergon 24:91) scores the wrist 3 of 3 beyond 15° either way, REBA (Hignett &
+/// McAtamney 2000, Appl Ergon 31:201) 2 of 2; ISO 11226:2000 calls extreme wrist positions not
+/// acceptable without giving an angle.
+pub const WRIST_FLEXION_DEG: f64 = 15.0;
+
+/// Radial or ulnar deviation beyond this is scored as deviated \[deg\]: RULA adds a point for a
+/// wrist "bent from the midline", REBA for one "deviated or twisted"; neither gives an angle, so
+/// 10° is an ASSUMPTION (what an observer would not see), the threshold posture-opt's RULA and
+/// REBA scoring uses.
+pub const WRIST_DEVIATION_DEG: f64 = 10.0;
+
 /// Number of zone rows per phase.
-pub const ZONE_ROWS: usize = 11;
+pub const ZONE_ROWS: usize = 19;
 
 /// Penalty of one radian beyond a zone, in the objective's units (its fatigue term is the
 /// logarithm of the total fatigue index, so 10 makes a degree beyond a zone cost as much as
@@ -87,6 +104,14 @@ pub enum Zone {
     HeadInclination,
     HeadBack,
     NeckFlexion,
+    RightWristFlexed,
+    RightWristExtended,
+    RightWristRadial,
+    RightWristUlnar,
+    LeftWristFlexed,
+    LeftWristExtended,
+    LeftWristRadial,
+    LeftWristUlnar,
 }
 
 impl Zone {
@@ -102,6 +127,14 @@ impl Zone {
         Zone::HeadInclination,
         Zone::HeadBack,
         Zone::NeckFlexion,
+        Zone::RightWristFlexed,
+        Zone::RightWristExtended,
+        Zone::RightWristRadial,
+        Zone::RightWristUlnar,
+        Zone::LeftWristFlexed,
+        Zone::LeftWristExtended,
+        Zone::LeftWristRadial,
+        Zone::LeftWristUlnar,
     ];
 
     /// What the zone limits, in words ("trunk twisted to the left").
@@ -118,6 +151,14 @@ impl Zone {
             Zone::HeadInclination => "head inclined forward from the vertical",
             Zone::HeadBack => "head tilted back",
             Zone::NeckFlexion => "neck flexed against the trunk",
+            Zone::RightWristFlexed => "right wrist flexed",
+            Zone::RightWristExtended => "right wrist extended",
+            Zone::RightWristRadial => "right wrist bent toward the thumb (radial deviation)",
+            Zone::RightWristUlnar => "right wrist bent toward the little finger (ulnar deviation)",
+            Zone::LeftWristFlexed => "left wrist flexed",
+            Zone::LeftWristExtended => "left wrist extended",
+            Zone::LeftWristRadial => "left wrist bent toward the thumb (radial deviation)",
+            Zone::LeftWristUlnar => "left wrist bent toward the little finger (ulnar deviation)",
         }
     }
 
@@ -125,6 +166,20 @@ impl Zone {
     pub fn source(self, movement: bool) -> &'static str {
         match (self, movement) {
             (Zone::HeadInclination | Zone::HeadBack | Zone::NeckFlexion, _) => "ISO 11226",
+            (
+                Zone::RightWristFlexed
+                | Zone::RightWristExtended
+                | Zone::LeftWristFlexed
+                | Zone::LeftWristExtended,
+                _,
+            ) => "RULA; REBA",
+            (
+                Zone::RightWristRadial
+                | Zone::RightWristUlnar
+                | Zone::LeftWristRadial
+                | Zone::LeftWristUlnar,
+                _,
+            ) => "RULA",
             (_, true) => "EN 1005-4",
             (_, false) => "ISO 11226",
         }
@@ -152,8 +207,9 @@ impl ZoneLimits {
             )
         };
         let back = ISO_BACKWARD_TOLERANCE_DEG;
+        let (w, d) = (WRIST_FLEXION_DEG, WRIST_DEVIATION_DEG);
         let deg = [
-            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0,
+            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0, w, w, d, d, w, w, d, d,
         ];
         ZoneLimits {
             max_rad: deg.map(f64::to_radians),
@@ -190,10 +246,12 @@ struct Frames {
     head: usize,
     upper: [usize; 2],
     fore: [usize; 2],
+    /// q indices of each wrist's flexion and deviation joints (right, left).
+    wrist: [[usize; 2]; 2],
 }
 
 impl Frames {
-    fn angles_rad(&self, model: &BodyModel, data: &StaticsData) -> [f64; ZONE_ROWS] {
+    fn angles_rad(&self, model: &BodyModel, data: &StaticsData, q: &[f64]) -> [f64; ZONE_ROWS] {
         let f = self;
         let (r_pelvis, _) = data.link_pose(model, f.pelvis);
         let (r_trunk, _) = data.link_pose(model, f.trunk);
@@ -221,6 +279,7 @@ impl Frames {
             let e = data.link_point(model, f.fore[i], &o);
             (-(e - s).normalize().z).clamp(-1.0, 1.0).acos()
         };
+        let [[rf, rd], [lf, ld]] = f.wrist;
         [
             trunk,
             -trunk,
@@ -233,6 +292,14 @@ impl Frames {
             head,
             -head,
             neck,
+            q[rf],
+            -q[rf],
+            q[rd],
+            -q[rd],
+            q[lf],
+            -q[lf],
+            q[ld],
+            -q[ld],
         ]
     }
 
@@ -243,11 +310,12 @@ impl Frames {
         &self,
         model: &BodyModel,
         data: &StaticsData,
+        q: &[f64],
         limits: &ZoneLimits,
         out: &mut [f64; ZONE_ROWS],
     ) {
         let f = self;
-        let ang = self.angles_rad(model, data);
+        let ang = self.angles_rad(model, data, q);
         let o = Vector3::zeros();
         for (i, z) in Zone::ALL.iter().enumerate() {
             let lim = limits.max_rad[i];
@@ -289,6 +357,16 @@ impl ZoneWork {
             head: link("head")?,
             upper: [link("r_upper_arm")?, link("l_upper_arm")?],
             fore: [link("r_forearm")?, link("l_forearm")?],
+            wrist: [
+                [
+                    model.q_index("r_wrist_flexion").ok()?,
+                    model.q_index("r_wrist_deviation").ok()?,
+                ],
+                [
+                    model.q_index("l_wrist_flexion").ok()?,
+                    model.q_index("l_wrist_deviation").ok()?,
+                ],
+            ],
         };
         let links = [
             frames.pelvis,
@@ -315,8 +393,8 @@ impl ZoneWork {
 
     /// The angles \[rad\] of each zone (the value its limit bounds) at the posture whose forward
     /// kinematics `data` holds.
-    pub fn angles_rad(&self, model: &BodyModel, data: &StaticsData) -> [f64; ZONE_ROWS] {
-        self.frames.angles_rad(model, data)
+    pub fn angles_rad(&self, model: &BodyModel, data: &StaticsData, q: &[f64]) -> [f64; ZONE_ROWS] {
+        self.frames.angles_rad(model, data, q)
     }
 
     /// The rows `g ≤ 0` (radians beyond each limit, to first order) at the posture whose forward
@@ -326,10 +404,11 @@ impl ZoneWork {
         &self,
         model: &BodyModel,
         data: &StaticsData,
+        q: &[f64],
         limits: &ZoneLimits,
         out: &mut [f64; ZONE_ROWS],
     ) {
-        self.frames.rows(model, data, limits, out)
+        self.frames.rows(model, data, q, limits, out)
     }
 
     /// The rows at `q` and their gradients: `grad[i][k] = ∂g_i/∂q_k` (zero for joints that move
@@ -344,7 +423,7 @@ impl ZoneWork {
     ) {
         self.q.copy_from_slice(q);
         forward_kinematics(model, &mut self.data, &self.q);
-        self.frames.rows(model, &self.data, limits, g);
+        self.frames.rows(model, &self.data, q, limits, g);
         for row in grad.iter_mut() {
             row.iter_mut().for_each(|v| *v = 0.0);
         }
@@ -353,13 +432,27 @@ impl ZoneWork {
             let k = self.moving[idx];
             self.q[k] = q[k] + FD_STEP;
             forward_kinematics(model, &mut self.data, &self.q);
-            self.frames.rows(model, &self.data, limits, &mut plus);
+            self.frames
+                .rows(model, &self.data, &self.q, limits, &mut plus);
             self.q[k] = q[k] - FD_STEP;
             forward_kinematics(model, &mut self.data, &self.q);
-            self.frames.rows(model, &self.data, limits, &mut minus);
+            self.frames
+                .rows(model, &self.data, &self.q, limits, &mut minus);
             self.q[k] = q[k];
             for i in 0..ZONE_ROWS {
                 grad[i][k] = (plus[i] - minus[i]) / (2.0 * FD_STEP);
+            }
+        }
+        // the wrist rows are ± a joint angle
+        let first = Zone::ALL
+            .iter()
+            .position(|z| *z == Zone::RightWristFlexed)
+            .unwrap_or(ZONE_ROWS);
+        for (side, joints) in self.frames.wrist.iter().enumerate() {
+            for (j, &k) in joints.iter().enumerate() {
+                let i = first + 4 * side + 2 * j;
+                grad[i][k] = 1.0;
+                grad[i + 1][k] = -1.0;
             }
         }
     }
@@ -369,7 +462,7 @@ impl ZoneWork {
         self.q.copy_from_slice(q);
         forward_kinematics(model, &mut self.data, &self.q);
         let mut g = [0.0; ZONE_ROWS];
-        self.frames.rows(model, &self.data, limits, &mut g);
+        self.frames.rows(model, &self.data, q, limits, &mut g);
         g.iter().map(|v| v.max(0.0)).sum()
     }
 
@@ -384,7 +477,7 @@ impl ZoneWork {
     ) -> Vec<Excess> {
         self.q.copy_from_slice(q);
         forward_kinematics(model, &mut self.data, &self.q);
-        self.excesses(model, &self.data, limits, tolerance_deg)
+        self.excesses(model, &self.data, q, limits, tolerance_deg)
     }
 
     /// The zones the posture whose forward kinematics `data` holds goes beyond by more than
@@ -393,10 +486,11 @@ impl ZoneWork {
         &self,
         model: &BodyModel,
         data: &StaticsData,
+        q: &[f64],
         limits: &ZoneLimits,
         tolerance_deg: f64,
     ) -> Vec<Excess> {
-        let ang = self.angles_rad(model, data);
+        let ang = self.angles_rad(model, data, q);
         Zone::ALL
             .iter()
             .enumerate()

@@ -385,6 +385,7 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
                         &task,
                         "--no-adapt",
                         "--fatigue-only",
+                        "--no-zones",
                         "--json",
                     ]);
                     (r.key.clone(), plan)

@@ -60,7 +60,7 @@ fn the_planners_zone_angles_are_the_assessments() {
         let q = random_posture(&t, &mut seed);
         let a = BodyAngles::measure(&t.model, &mut data, &q, None).unwrap();
         forward_kinematics(&t.model, &mut data, &q);
-        let z = zw.angles_rad(&t.model, &data);
+        let z = zw.angles_rad(&t.model, &data, &q);
         let deg = |i: usize| z[i].to_degrees();
         let close = |x: f64, y: f64, what: &str| {
             assert!(
@@ -76,6 +76,28 @@ fn the_planners_zone_angles_are_the_assessments() {
         close(deg(7), a.left.upper_arm_elevation_deg, "left upper arm");
         close(deg(8), a.head_inclination_deg, "head inclination");
         close(deg(10), a.neck_flexion_deg, "neck flexion");
+        for (i, arm, side) in [(11, &a.right, "right"), (15, &a.left, "left")] {
+            close(
+                deg(i),
+                arm.wrist_flexion_deg,
+                &format!("{side} wrist flexed"),
+            );
+            close(
+                deg(i + 1),
+                -arm.wrist_flexion_deg,
+                &format!("{side} wrist extended"),
+            );
+            close(
+                deg(i + 2),
+                arm.wrist_deviation_deg,
+                &format!("{side} wrist radial"),
+            );
+            close(
+                deg(i + 3),
+                -arm.wrist_deviation_deg,
+                &format!("{side} wrist ulnar"),
+            );
+        }
         // the rows' gradients: central differences at a step 100 times larger
         let mut g = [0.0; ZONE_ROWS];
         let mut grad: [Vec<f64>; ZONE_ROWS] = std::array::from_fn(|_| vec![0.0; q.len()]);
@@ -86,11 +108,11 @@ fn the_planners_zone_angles_are_the_assessments() {
             qq[k] = q[k] + h;
             let mut gp = [0.0; ZONE_ROWS];
             forward_kinematics(&t.model, &mut data, &qq);
-            zw.rows(&t.model, &data, &lim, &mut gp);
+            zw.rows(&t.model, &data, &qq, &lim, &mut gp);
             qq[k] = q[k] - h;
             let mut gm = [0.0; ZONE_ROWS];
             forward_kinematics(&t.model, &mut data, &qq);
-            zw.rows(&t.model, &data, &lim, &mut gm);
+            zw.rows(&t.model, &data, &qq, &lim, &mut gm);
             qq[k] = q[k];
             for i in 0..ZONE_ROWS {
                 let fd = (gp[i] - gm[i]) / (2.0 * h);

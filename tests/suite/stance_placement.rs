@@ -19,6 +19,7 @@ use nalgebra::{Vector2, Vector3};
 use posture_opt::assess::angles::BodyAngles;
 use posture_opt::body::StaticsData;
 use posture_opt::body::stance::{FeetNow, SOLE_CORNERS};
+use posture_opt::plan::asymmetry::Asymmetry;
 use posture_opt::plan::posture::PostureWork;
 use posture_opt::plan::stepping::Stepping;
 use posture_opt::plan::task::{
@@ -158,9 +159,16 @@ fn step_cost_has_the_gradient_of_its_value() {
     let q0 = scrambled(&task, 11);
     let q1 = scrambled(&task, 12);
     let nb = feet(&mut data, &q1);
+    // with the asymmetry of two phases' loads, one on each side
     let cost = Stepping {
         weight: 0.7,
         neighbours: vec![(nb, 1.0), (nb, 2.0)],
+        asymmetry: Asymmetry {
+            loads: vec![
+                (Vector2::new(0.3, 0.6), 0.5),
+                (Vector2::new(0.2, -0.5), 0.25),
+            ],
+        },
     };
     let f0 = feet(&mut data, &q0);
     let mut grad = vec![0.0; q0.len()];
@@ -184,6 +192,7 @@ fn step_cost_has_the_gradient_of_its_value() {
     let still = Stepping {
         weight: 0.7,
         neighbours: vec![(f0, 1.0)],
+        asymmetry: Asymmetry::default(),
     };
     assert_eq!(still.value(&task, &f0), 0.0);
 }
@@ -306,20 +315,53 @@ fn max_twist_deg(task: &Task, plan: &Plan) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Free to step and turn, the side transfer is done facing each side: without the acceptable
+/// posture zones the fixed stance twists the trunk beyond 20° to reach the bin; with them (the
+/// default) the twist is held at ISO 11226's 10° either way, and the fixed stance pays for it
+/// elsewhere — the placed feet's plan tires less than half as much and goes beyond no zone.
+/// (Without the zones, how far the placed worker's trunk twists is a near-tie — a twist of
+/// 10–25° costs almost no fatigue — so it is not asserted.)
 #[test]
 fn turning_the_feet_removes_the_twist_of_a_side_transfer() {
     let fixed = side_transfer(true);
-    let fixed_plan = plan(&fixed);
-    let twist_fixed = max_twist_deg(&fixed, &fixed_plan);
+    let fixed_free_of_zones = plan(&fixed);
+    let twist_fixed = max_twist_deg(&fixed, &fixed_free_of_zones);
     assert!(
         twist_fixed > 20.0,
         "with the feet fixed the side transfer twists the trunk {twist_fixed:.1}°: the test needs a task that does"
     );
-    let (task, plan) = placed();
-    let twist = max_twist_deg(task, plan);
+    let zoned = |task: &Task| {
+        plan_task_with(
+            task,
+            PlanOptions {
+                adapt: false,
+                baselines: false,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let fixed_plan = zoned(&fixed);
+    let task = side_transfer(false);
+    let plan = zoned(&task);
+    let twist = max_twist_deg(&task, &plan);
     assert!(
-        twist <= 20.0,
+        twist <= 10.5,
         "trunk twisted {twist:.1}° with the feet free to turn"
+    );
+    for ph in &plan.summary.phases {
+        assert!(
+            ph.outside_zones.is_empty(),
+            "'{}' goes beyond a zone with the feet free: {:?}",
+            ph.phase,
+            ph.outside_zones
+        );
+    }
+    assert!(
+        plan.summary.total_u < 0.5 * fixed_plan.summary.total_u,
+        "placed feet U {} against fixed {}",
+        plan.summary.total_u,
+        fixed_plan.summary.total_u
     );
     // the feet turn toward each side: left for the bin, right for the fixture
     let feet = |name: &str| {

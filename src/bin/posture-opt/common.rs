@@ -161,7 +161,8 @@ pub struct AssessArgs {
     /// Plan once for the whole task and hold the postures (no re-planning as capacity falls).
     #[arg(long)]
     pub no_adapt: bool,
-    /// Minimise fatigue only (no joint-range discomfort term, no posture zones, no step cost).
+    /// Minimise fatigue only (no joint-range discomfort term, no step or asymmetry cost); the
+    /// acceptable posture zones stay (off with --no-zones).
     #[arg(long)]
     pub fatigue_only: bool,
     /// Leave the postures free of ISO 11226 / EN 1005-4's acceptable zones (the unconstrained
