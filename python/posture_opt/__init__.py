@@ -244,8 +244,8 @@ def plan(
     """Plans postures for a task and assesses the plan: ``posture-opt plan --json``.
 
     ``adapt=False`` plans once and holds the postures (``--no-adapt``); ``fatigue_only`` drops the
-    discomfort term, the posture zones and the step cost; ``zones=False`` leaves the postures free
-    of ISO 11226 / EN 1005-4's acceptable zones (``--no-zones``); ``capacity_floor`` is the
+    discomfort term, the step cost and the asymmetry cost (the posture zones stay); ``zones=False``
+    leaves the postures free of the acceptable zones (``--no-zones``); ``capacity_floor`` is the
     work/rest advice's floor (0 < floor < 1).
 
     Returns the document's dict (``task``, ``joints``, ``half_joint_ids``, ``half_joints``,

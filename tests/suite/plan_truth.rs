@@ -263,7 +263,8 @@ fn planning_is_deterministic() {
 /// 0.5 % (the planner issue's bound),
 /// nor flip the exhaustion or the shift verdict: on every shipped task (the default plan, held).
 /// And no baseline the plan reports reaches a lower objective than the plan (issue 37.5); and the
-/// seeds screened in reverse order move the total by at most 0.5 % and flip no verdict (37.3).
+/// seeds screened in reverse order, or the first phase's work moved 1 mm forward, move the
+/// total by at most 0.5 % and flip no verdict (37.3).
 /// Known miss (docs/results.md, The QP's precision): on shelf_lowered the two precisions end in
 /// two local optima whose objectives differ by 8.8e-4 (the free left arm's posture in 'place low
 /// board' and the high board's), so there only the issue's bound on the total and the verdicts
@@ -384,6 +385,39 @@ fn solver_precision_does_not_decide(name: &str) {
         verdict(&a),
         verdict(&c),
         "{name}: the verdict flips with the seed order"
+    );
+    // the first phase's work 1 mm further forward (every phase working at that point moves with
+    // it, its held object too, so that the phases sharing a posture keep sharing it)
+    let mut moved = task.clone();
+    let first = task.phases[0].targets_m;
+    for ph in moved.phases.iter_mut().filter(|p| p.targets_m == first) {
+        for t in ph.targets_m.iter_mut().flatten() {
+            t.x += 0.001;
+        }
+        if let Some(o) = ph.object.as_mut() {
+            o.center_m[0] += 0.001;
+        }
+    }
+    let m = plan_task_with(&moved, held(false)).unwrap();
+    let rel = (a.summary.total_u - m.summary.total_u).abs() / a.summary.total_u;
+    eprintln!(
+        "{name}: target 1 mm forward {:.3} vs {:.3} min ({rel:.1e})",
+        m.summary.total_u, a.summary.total_u
+    );
+    // known miss (docs/results.md): shelf_high's 'place low board' has two wrist and forearm
+    // postures 0.9 % apart (forearm neutral, wrist deviated to its zone's edge, against forearm
+    // pronated 48° and shoulder rotated 38° in, wrist flexed to its zone's edge)
+    let known_miss_mm = name == "shelf_high";
+    assert!(
+        known_miss_mm || rel <= 5e-3,
+        "{name}: total U {} with the target 1 mm forward vs {} (relative {rel:.1e})",
+        m.summary.total_u,
+        a.summary.total_u
+    );
+    assert_eq!(
+        verdict(&a),
+        verdict(&m),
+        "{name}: the verdict flips with the target 1 mm forward"
     );
 }
 
