@@ -233,6 +233,14 @@ fn planned_postures_keep_the_zones_the_targets_allow_and_report_the_rest() {
             (Zone::HeadInclination, a.head_inclination_deg),
             (Zone::HeadBack, -a.head_inclination_deg),
             (Zone::NeckFlexion, a.neck_flexion_deg),
+            (Zone::RightWristFlexed, a.right.wrist_flexion_deg),
+            (Zone::RightWristExtended, -a.right.wrist_flexion_deg),
+            (Zone::RightWristRadial, a.right.wrist_deviation_deg),
+            (Zone::RightWristUlnar, -a.right.wrist_deviation_deg),
+            (Zone::LeftWristFlexed, a.left.wrist_flexion_deg),
+            (Zone::LeftWristExtended, -a.left.wrist_flexion_deg),
+            (Zone::LeftWristRadial, a.left.wrist_deviation_deg),
+            (Zone::LeftWristUlnar, -a.left.wrist_deviation_deg),
         ];
         let beyond: Vec<&str> = measured
             .iter()
@@ -242,6 +250,72 @@ fn planned_postures_keep_the_zones_the_targets_allow_and_report_the_rest() {
         let reported: Vec<&str> = ph.outside_zones.iter().map(|z| z.what.as_str()).collect();
         assert_eq!(beyond, reported, "phase '{}'", ph.phase);
     }
+}
+
+/// The zones are constraints, not comfort: a fatigue-only plan keeps them too (only
+/// `zones: false` drops them). On the shelf, whose targets force no excess, the fatigue-only
+/// plan twists and bends the trunk at most 10° and bends no wrist beyond its zone; without the
+/// zones the same objective twists the trunk far beyond.
+#[test]
+fn a_fatigue_only_plan_keeps_the_zones() {
+    let t = task("shelf.yaml");
+    let plan = |zones: bool| {
+        plan_task_with(
+            &t,
+            PlanOptions {
+                adapt: false,
+                baselines: false,
+                fatigue_only: true,
+                zones,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let mut data = StaticsData::new(&t.model, 4);
+    let mut worst = |p: &Plan| {
+        p.summary
+            .phases
+            .iter()
+            .map(|ph| {
+                let a = BodyAngles::measure(&t.model, &mut data, &ph.q_rad, None).unwrap();
+                let wrist = |w: &posture_opt::assess::angles::ArmAngles| {
+                    (w.wrist_flexion_deg.abs() - 15.0).max(w.wrist_deviation_deg.abs() - 10.0)
+                };
+                (
+                    a.trunk_twist_deg.abs().max(a.trunk_side_bend_deg.abs()),
+                    wrist(&a.right).max(wrist(&a.left)),
+                )
+            })
+            .fold((0.0f64, f64::NEG_INFINITY), |(t, w), (a, b)| {
+                (t.max(a), w.max(b))
+            })
+    };
+    let zoned = plan(true);
+    assert!(zoned.summary.fatigue_only && zoned.summary.zones);
+    let (twist, wrist) = worst(&zoned);
+    assert!(
+        twist <= 10.5,
+        "fatigue-only within the zones: trunk {twist:.1}°"
+    );
+    assert!(
+        wrist <= 0.5,
+        "fatigue-only within the zones: a wrist {wrist:.1}° beyond"
+    );
+    assert!(
+        zoned
+            .summary
+            .phases
+            .iter()
+            .all(|ph| ph.outside_zones.is_empty())
+    );
+    let free = plan(false);
+    assert!(!free.summary.zones);
+    let (free_twist, _) = worst(&free);
+    assert!(
+        free_twist > 20.0,
+        "fatigue-only without the zones: trunk {free_twist:.1}° (the test needs an excess)"
+    );
 }
 
 /// A posture the targets force beyond a zone makes its phase the one "what would change it"
