@@ -335,7 +335,7 @@ pub fn findings(
             })
             .collect();
         let text = if outside.is_empty() {
-            "Every posture is within the acceptable zones of ISO 11226 and EN 1005-4 (trunk, upper arms, head and neck).".to_string()
+            "Every posture is within the acceptable zones of ISO 11226 and EN 1005-4 (trunk, upper arms, head and neck) and RULA's and REBA's wrist zones.".to_string()
         } else if s.zones {
             format!(
                 "Outside the acceptable zones of ISO 11226 / EN 1005-4 where the targets force it (the plan keeps the zones elsewhere and makes each excess the least the search found): {}. Moving these targets is the layout change that removes them.",
