@@ -240,12 +240,14 @@ def plan(
     fatigue_only: bool = False,
     capacity_floor: float = DEFAULT_CAPACITY_FLOOR,
     zones: bool = True,
+    gaze: bool = True,
 ) -> Dict[str, Any]:
     """Plans postures for a task and assesses the plan: ``posture-opt plan --json``.
 
     ``adapt=False`` plans once and holds the postures (``--no-adapt``); ``fatigue_only`` drops the
     discomfort term, the step cost and the asymmetry cost (the posture zones stay); ``zones=False``
-    leaves the postures free of the acceptable zones (``--no-zones``); ``capacity_floor`` is the
+    leaves the postures free of the acceptable zones (``--no-zones``); ``gaze=False`` leaves every
+    phase's head free instead of looking at its work (``--no-gaze``); ``capacity_floor`` is the
     work/rest advice's floor (0 < floor < 1).
 
     Returns the document's dict (``task``, ``joints``, ``half_joint_ids``, ``half_joints``,
@@ -256,7 +258,7 @@ def plan(
     ``summary["final_capacity"]``.
     """
     t = load_task(task)
-    doc = json.loads(_native.plan(t, bool(adapt), bool(fatigue_only), _floor(capacity_floor), bool(zones)))
+    doc = json.loads(_native.plan(t, bool(adapt), bool(fatigue_only), _floor(capacity_floor), bool(zones), bool(gaze)))
     return _plan_arrays(doc)
 
 

@@ -338,7 +338,7 @@ fn shard_of(shard: Option<&str>) -> PyResult<Option<Shard>> {
 
 /// Plans a task and assesses the plan: the `plan --json` document.
 #[pyfunction]
-#[pyo3(signature = (task, adapt=true, fatigue_only=false, capacity_floor=0.7, zones=true))]
+#[pyo3(signature = (task, adapt=true, fatigue_only=false, capacity_floor=0.7, zones=true, gaze=true))]
 fn plan(
     py: Python<'_>,
     task: &PyTask,
@@ -346,9 +346,11 @@ fn plan(
     fatigue_only: bool,
     capacity_floor: f64,
     zones: bool,
+    gaze: bool,
 ) -> PyResult<String> {
     let mut opts = plan_options(adapt, fatigue_only, capacity_floor)?;
     opts.zones = zones;
+    opts.gaze = gaze;
     let data = task.inner.clone();
     py.detach(move || {
         let t = &data.task;

@@ -6,8 +6,9 @@
 //!   the pelvis counts as trunk flexion, as an observer would see it; side bending is the axis's
 //!   angle out of the sagittal plane. Twist: the thorax's rotation about its own long axis
 //!   against the pelvis (swing–twist split), whatever the flexion.
-//! * **Neck**: the head's long axis against the trunk's, in the trunk's planes; twist: the neck's
-//!   axial rotation.
+//! * **Neck and head**: the head's long axis against the trunk's and against the vertical, in the
+//!   head's own planes ([`crate::body::head`]: turning the head does not change how far it is
+//!   bent); twist: the neck's axial rotation.
 //! * **Upper arm**: the shoulder-to-elbow direction in the trunk frame: flexion is its elevation
 //!   from hanging (negative when the arm points back), abduction its angle out of the trunk's
 //!   sagittal plane (outward positive).
@@ -122,11 +123,10 @@ impl BodyAngles {
         } else {
             trunk_twist_deg
         };
-        let h_axis = r_trunk.transpose() * (r_head * Vector3::z());
-        let neck_flexion_deg = deg(h_axis.x.atan2(h_axis.z));
-        let h_world = r_head * Vector3::z();
-        let head_inclination_deg = deg(h_world.dot(&fwd).atan2(h_world.z));
-        let neck_side_bend_deg = deg(h_axis.y.clamp(-1.0, 1.0).asin());
+        let head = crate::body::head::HeadAngles::measure(&r_trunk, &r_head);
+        let neck_flexion_deg = deg(head.neck_flexion_rad);
+        let head_inclination_deg = deg(head.inclination_rad);
+        let neck_side_bend_deg = deg(head.neck_side_bend_rad);
         let neck_twist_deg = deg(q_rad[joint("neck_axial_rotation")?]);
         let arm = |side: &str, outward_sign: f64| -> Result<ArmAngles, NotWorker> {
             let (upper, fore, hand, grip) = (

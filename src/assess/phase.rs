@@ -106,20 +106,14 @@ pub fn describe(a: &BodyAngles) -> String {
     } else {
         parts.push(format!("trunk extended {:.0}°", -tf));
     }
-    if a.trunk_twist_deg.abs() >= 5.0 {
-        parts.push(format!(
-            "twisted {:.0}° to the {}",
-            a.trunk_twist_deg.abs(),
-            side(a.trunk_twist_deg)
-        ));
-    }
-    if a.trunk_side_bend_deg.abs() >= 5.0 {
-        parts.push(format!(
-            "bent {:.0}° to the {}",
-            a.trunk_side_bend_deg.abs(),
-            side(a.trunk_side_bend_deg)
-        ));
-    }
+    // a turn or bend to one side, named from `min_deg` on
+    let sideways = |parts: &mut Vec<String>, what: &str, v: f64, min_deg: f64| {
+        if v.abs() >= min_deg {
+            parts.push(format!("{what} {:.0}° to the {}", v.abs(), side(v)));
+        }
+    };
+    sideways(&mut parts, "twisted", a.trunk_twist_deg, 5.0);
+    sideways(&mut parts, "bent", a.trunk_side_bend_deg, 5.0);
     if a.neck_flexion_deg.abs() >= 10.0 {
         parts.push(if a.neck_flexion_deg > 0.0 {
             format!("head bowed {:.0}°", a.neck_flexion_deg)
@@ -127,6 +121,8 @@ pub fn describe(a: &BodyAngles) -> String {
             format!("head tilted back {:.0}°", -a.neck_flexion_deg)
         });
     }
+    sideways(&mut parts, "head turned", a.neck_twist_deg, 10.0);
+    sideways(&mut parts, "head bent", a.neck_side_bend_deg, 5.0);
     for (name, arm) in [("right", &a.right), ("left", &a.left)] {
         if arm.upper_arm_flexion_deg.abs() >= 20.0 || arm.upper_arm_abduction_deg >= 20.0 {
             // angles against the trunk, as RULA and REBA take them (a stooped trunk with arms

@@ -5,6 +5,7 @@
 //! Frames and signs: see [`statics`]. Half-joint ids are `JOINT+` (the muscle group that
 //! produces positive torque about the joint) and `JOINT-`.
 
+pub mod head;
 pub mod model;
 pub mod report;
 pub mod stance;

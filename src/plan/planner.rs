@@ -80,6 +80,9 @@ pub struct PlanOptions {
     /// Keep the postures within the acceptable zones of ISO 11226 and EN 1005-4
     /// ([`super::zones`]; false: the unconstrained optimum, for comparison).
     pub zones: bool,
+    /// Each phase looks at its work (its gaze point, [`super::task::Phase::gaze_m`]); false: the
+    /// head is free in every phase, for comparison.
+    pub gaze: bool,
     /// Compute the three baselines.
     pub baselines: bool,
     /// After the first plan's passes settle, search every group again from the other groups'
@@ -100,6 +103,7 @@ impl Default for PlanOptions {
             adapt: true,
             fatigue_only: false,
             zones: true,
+            gaze: true,
             baselines: true,
             cross_seeding: true,
             pool_swap: true,
@@ -155,6 +159,8 @@ pub struct Planner<'t> {
     /// kept ([`PlanOptions::zones`]), and their evaluator (`None`: not the generated worker).
     group_zones: Vec<ZoneLimits>,
     zones_on: bool,
+    /// Whether the phases look at their gaze points ([`PlanOptions::gaze`]).
+    gaze_on: bool,
     zone_work: Option<ZoneWork>,
 }
 
@@ -238,6 +244,7 @@ impl<'t> Planner<'t> {
             hint: None,
             group_zones,
             zones_on: true,
+            gaze_on: true,
             zone_work: ZoneWork::new(&task.model),
         })
     }
@@ -528,7 +535,7 @@ impl<'t> Planner<'t> {
                     discomfort_weight: self.group_weight(g, fatigue_only),
                     shape: Shape::of(t),
                     capacity: &capacity,
-                    gaze_m: rep.gaze_m,
+                    gaze_m: rep.gaze_m().filter(|_| self.gaze_on),
                     zones: self.zones_for(g, fatigue_only),
                 };
                 let start = gp.q[g].clone();
@@ -700,7 +707,7 @@ impl<'t> Planner<'t> {
                 discomfort_weight: weight,
                 shape,
                 capacity: &big,
-                gaze_m: rep.gaze_m,
+                gaze_m: rep.gaze_m().filter(|_| self.gaze_on),
                 zones: self.zones_for(g, fatigue_only),
             };
             let mut cost = cost_of();
@@ -804,6 +811,7 @@ impl<'t> Planner<'t> {
         self.cross_rounds = if opts.cross_seeding { CROSS_ROUNDS } else { 0 };
         self.swap = opts.pool_swap;
         self.zones_on = opts.zones;
+        self.gaze_on = opts.gaze;
         let (gp, passes) = self.initial(&fresh, t.cycles as u64, opts.fatigue_only)?;
         self.first_plan = Some(gp.clone());
         let mut plan = self.simulate(gp, passes, opts)?;
@@ -1098,6 +1106,7 @@ impl<'t> Planner<'t> {
                 adaptive: opts.adapt,
                 fatigue_only: opts.fatigue_only,
                 zones: opts.zones && self.zone_work.is_some(),
+                gaze: opts.gaze,
                 duration_s: time,
                 planned_duration_s: t.duration_s(),
                 cycles_done,

@@ -177,6 +177,9 @@ pub struct Summary {
     pub fatigue_only: bool,
     /// Whether the postures were kept within the acceptable zones (off with `--no-zones`).
     pub zones: bool,
+    /// Whether each phase looked at its gaze point (off with `--no-gaze`; a phase with
+    /// `gaze_free` or a body without a head looks at nothing either way).
+    pub gaze: bool,
     pub duration_s: f64,
     pub planned_duration_s: f64,
     pub cycles_done: u32,

@@ -226,9 +226,13 @@ pub struct PhaseFile {
     pub duration_s: f64,
     /// Where the worker looks \[m\], world frame (a body with a `head` link): the head turns so
     /// that this point lies within the eyes' comfortable cone (see `docs/worker.md`, "Looking
-    /// at the work"). Absent, the head is free.
+    /// at the work"). Absent: the middle of the phase's hand targets.
     #[serde(default)]
     pub gaze_m: Option<[f64; 3]>,
+    /// The worker need not look at anything in this phase (work done by feel): the head is free.
+    /// Not with `gaze_m`.
+    #[serde(default)]
+    pub gaze_free: bool,
 }
 
 /// When to re-plan.
@@ -410,8 +414,19 @@ pub struct Phase {
     pub hand_force_n: [Vector3<f64>; 2],
     pub duration_s: f64,
     pub object: Option<HeldObject>,
-    /// Where the worker looks \[m\], when the phase says.
-    pub gaze_m: Option<Vector3<f64>>,
+    /// Where the worker looks.
+    pub gaze: Gaze,
+}
+
+/// Where a phase's worker looks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Gaze {
+    /// Nowhere in particular (work done by feel, or a body without a head).
+    Free,
+    /// At the middle of the phase's hand targets, wherever they are moved.
+    Targets,
+    /// At this point \[m\], world frame.
+    Point(Vector3<f64>),
 }
 
 impl Phase {
@@ -419,7 +434,23 @@ impl Phase {
     pub fn same_work(&self, other: &Phase) -> bool {
         self.targets_m == other.targets_m
             && self.hand_force_n == other.hand_force_n
-            && self.gaze_m == other.gaze_m
+            && self.gaze_m() == other.gaze_m()
+    }
+
+    /// The point the worker looks at \[m\], world frame (`None`: the head is free).
+    pub fn gaze_m(&self) -> Option<Vector3<f64>> {
+        match self.gaze {
+            Gaze::Free => None,
+            Gaze::Point(p) => Some(p),
+            Gaze::Targets => {
+                let (sum, n) = self
+                    .targets_m
+                    .iter()
+                    .flatten()
+                    .fold((Vector3::zeros(), 0.0), |(s, n), t| (s + t, n + 1.0));
+                (n > 0.0).then(|| sum / n)
+            }
+        }
     }
 
     /// Total force on the hands \[N\].
@@ -938,7 +969,14 @@ impl Task {
                     ),
                 ));
             }
-            phases.push(check_phase(i, ph, &hand_links, &gravity, &field)?);
+            phases.push(check_phase(
+                i,
+                ph,
+                &hand_links,
+                &gravity,
+                Head::of(&model).is_some(),
+                &field,
+            )?);
         }
         if f.cycles == 0 {
             return Err(field("cycles", "must be at least 1".into()));
@@ -1121,6 +1159,7 @@ fn check_phase(
     ph: &PhaseFile,
     hand_links: &[Option<(usize, String)>; 2],
     gravity: &Vector3<f64>,
+    has_head: bool,
     field: &FieldErr,
 ) -> Result<Phase, TaskError> {
     let at = |name: &str| format!("phases[{i}] ({}).{name}", ph.name);
@@ -1250,15 +1289,25 @@ fn check_phase(
         None if targets[1].is_some() => 1.0,
         None => 0.0,
     };
-    let gaze_m = match ph.gaze_m {
-        Some(g) if g.iter().all(|x| x.is_finite() && x.abs() <= 100.0) => Some(Vector3::from(g)),
+    let gaze = match ph.gaze_m {
+        Some(_) if ph.gaze_free => {
+            return Err(field(
+                &at("gaze_free"),
+                "a phase with gaze_m looks at it: give gaze_m or gaze_free, not both".into(),
+            ));
+        }
+        Some(g) if g.iter().all(|x| x.is_finite() && x.abs() <= 100.0) => {
+            Gaze::Point(Vector3::from(g))
+        }
         Some(g) => {
             return Err(field(
                 &at("gaze_m"),
                 format!("must be finite and within ±100 m, got {g:?}"),
             ));
         }
-        None => None,
+        // the worker looks at the work
+        None if !ph.gaze_free && has_head => Gaze::Targets,
+        None => Gaze::Free,
     };
     Ok(Phase {
         name: ph.name.clone(),
@@ -1266,7 +1315,7 @@ fn check_phase(
         hand_force_n: [total * (1.0 - left_share), total * left_share],
         duration_s: ph.duration_s,
         object,
-        gaze_m,
+        gaze,
     })
 }
 

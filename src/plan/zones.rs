@@ -6,8 +6,9 @@
 //! it ([`crate::assess::angles`]): the trunk's long axis against the vertical in the body's
 //! sagittal plane (forward positive) and out of it (side bending), the thorax's twist against the
 //! pelvis, each upper arm's angle against straight down, the head's long axis against the
-//! vertical, the neck's flexion (head against trunk), and each wrist's flexion and deviation
-//! joints. The wrists' rows keep near-ties apart: without them a bent and a straight wrist
+//! vertical, the neck's flexion and side bending (head against trunk; both in the head's own
+//! planes, [`crate::body::head`]) and its twist joint, and
+//! each wrist's flexion and deviation joints. The wrists' rows keep near-ties apart: without them a bent and a straight wrist
 //! can reach a target for about the same fatigue, and which one a plan takes depended on the
 //! search's path (shelf's 'place high board', 1 % apart). The limits ([`ZoneLimits::for_hold`]):
 //!
@@ -19,6 +20,8 @@
 //! | upper-arm elevation | 20° for 3 min or more, 60° for 1 min or less, linear in between; 60° for movements | ISO 11226 Fig. 3; EN 1005-4 |
 //! | head inclination | 85° forward, 5° back | ISO 11226 |
 //! | neck flexion | 25° | ISO 11226 |
+//! | neck side bending | 10° each way | ISO 11226; EN 1005-4 |
+//! | neck twist | 45° each way ([`NECK_TWIST_DEG`], ASSUMPTION) | see the constant |
 //! | wrist flexion, extension | 15° each way ([`WRIST_FLEXION_DEG`]) | RULA; REBA |
 //! | wrist radial, ulnar deviation | 10° each way ([`WRIST_DEVIATION_DEG`], ASSUMPTION) | RULA |
 //!
@@ -54,8 +57,21 @@ pub const WRIST_FLEXION_DEG: f64 = 15.0;
 /// REBA scoring uses.
 pub const WRIST_DEVIATION_DEG: f64 = 10.0;
 
+/// Side bending of the head against the trunk beyond this is not acceptable \[deg\]: ISO 11226:2000
+/// and EN 1005-4 (neutral zone ±10°, as applied e.g. by Occup Med 2020, doi:10.1186/s12995-020-00286-9,
+/// Table 2); RULA and REBA add a point for a side-bent neck.
+pub const NECK_SIDE_BEND_DEG: f64 = 10.0;
+
+/// Axial rotation of the head against the trunk beyond this is held to be too much \[deg\].
+/// ASSUMPTION: 45°, about half the active cervical rotation range (70–90° each way in clinical
+/// norms); secondary summaries of ISO 11226 give this figure as its limit for the head's axial
+/// rotation, which we could not check against the standard's text. RULA and REBA add a point for
+/// a twisted neck without an angle. It matters once the worker looks at the work: looking to
+/// the side is a neck twist unless the feet or the trunk turn.
+pub const NECK_TWIST_DEG: f64 = 45.0;
+
 /// Number of zone rows per phase.
-pub const ZONE_ROWS: usize = 19;
+pub const ZONE_ROWS: usize = 23;
 
 /// Penalty of one radian beyond a zone, in the objective's units (its fatigue term is the
 /// logarithm of the total fatigue index, so 10 makes a degree beyond a zone cost as much as
@@ -104,6 +120,10 @@ pub enum Zone {
     HeadInclination,
     HeadBack,
     NeckFlexion,
+    NeckSideLeft,
+    NeckSideRight,
+    NeckTwistLeft,
+    NeckTwistRight,
     RightWristFlexed,
     RightWristExtended,
     RightWristRadial,
@@ -127,6 +147,10 @@ impl Zone {
         Zone::HeadInclination,
         Zone::HeadBack,
         Zone::NeckFlexion,
+        Zone::NeckSideLeft,
+        Zone::NeckSideRight,
+        Zone::NeckTwistLeft,
+        Zone::NeckTwistRight,
         Zone::RightWristFlexed,
         Zone::RightWristExtended,
         Zone::RightWristRadial,
@@ -151,6 +175,10 @@ impl Zone {
             Zone::HeadInclination => "head inclined forward from the vertical",
             Zone::HeadBack => "head tilted back",
             Zone::NeckFlexion => "neck flexed against the trunk",
+            Zone::NeckSideLeft => "head bent to the left against the trunk",
+            Zone::NeckSideRight => "head bent to the right against the trunk",
+            Zone::NeckTwistLeft => "head turned to the left against the trunk",
+            Zone::NeckTwistRight => "head turned to the right against the trunk",
             Zone::RightWristFlexed => "right wrist flexed",
             Zone::RightWristExtended => "right wrist extended",
             Zone::RightWristRadial => "right wrist bent toward the thumb (radial deviation)",
@@ -166,6 +194,8 @@ impl Zone {
     pub fn source(self, movement: bool) -> &'static str {
         match (self, movement) {
             (Zone::HeadInclination | Zone::HeadBack | Zone::NeckFlexion, _) => "ISO 11226",
+            (Zone::NeckSideLeft | Zone::NeckSideRight, _) => "ISO 11226; EN 1005-4",
+            (Zone::NeckTwistLeft | Zone::NeckTwistRight, _) => "ASSUMPTION (45°)",
             (
                 Zone::RightWristFlexed
                 | Zone::RightWristExtended
@@ -208,8 +238,10 @@ impl ZoneLimits {
         };
         let back = ISO_BACKWARD_TOLERANCE_DEG;
         let (w, d) = (WRIST_FLEXION_DEG, WRIST_DEVIATION_DEG);
+        let (ns, nt) = (NECK_SIDE_BEND_DEG, NECK_TWIST_DEG);
         let deg = [
-            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0, w, w, d, d, w, w, d, d,
+            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0, ns, ns, nt, nt, w, w,
+            d, d, w, w, d, d,
         ];
         ZoneLimits {
             max_rad: deg.map(f64::to_radians),
@@ -248,6 +280,8 @@ struct Frames {
     fore: [usize; 2],
     /// q indices of each wrist's flexion and deviation joints (right, left).
     wrist: [[usize; 2]; 2],
+    /// q index of the neck's twist joint.
+    neck_twist: usize,
 }
 
 impl Frames {
@@ -269,10 +303,9 @@ impl Frames {
         let side = a.dot(&left).clamp(-1.0, 1.0).asin();
         let rel = nalgebra::UnitQuaternion::from_matrix(&(r_pelvis.transpose() * r_trunk));
         let twist = crate::body::stance::wrap_pi(2.0 * rel.k.atan2(rel.w));
-        let hw = r_head * Vector3::z();
-        let head = hw.dot(&fwd).atan2(hw.z);
-        let ht = r_trunk.transpose() * hw;
-        let neck = ht.x.atan2(ht.z);
+        let h = crate::body::head::HeadAngles::measure(&r_trunk, &r_head);
+        let (head, neck, neck_side) = (h.inclination_rad, h.neck_flexion_rad, h.neck_side_bend_rad);
+        let nt = q[f.neck_twist];
         let o = Vector3::zeros();
         let arm = |i: usize| {
             let s = data.link_point(model, f.upper[i], &o);
@@ -292,6 +325,10 @@ impl Frames {
             head,
             -head,
             neck,
+            neck_side,
+            -neck_side,
+            nt,
+            -nt,
             q[rf],
             -q[rf],
             q[rd],
@@ -367,6 +404,7 @@ impl ZoneWork {
                     model.q_index("l_wrist_deviation").ok()?,
                 ],
             ],
+            neck_twist: model.q_index("neck_axial_rotation").ok()?,
         };
         let links = [
             frames.pelvis,
@@ -443,7 +481,8 @@ impl ZoneWork {
                 grad[i][k] = (plus[i] - minus[i]) / (2.0 * FD_STEP);
             }
         }
-        // the wrist rows are ± a joint angle
+        // the wrist rows are ± a joint angle (the wrists move no measured link; the neck's twist
+        // moves the head, so the loop above has its rows)
         let first = Zone::ALL
             .iter()
             .position(|z| *z == Zone::RightWristFlexed)

@@ -386,6 +386,7 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
                         "--no-adapt",
                         "--fatigue-only",
                         "--no-zones",
+                        "--no-gaze",
                         "--json",
                     ]);
                     (r.key.clone(), plan)

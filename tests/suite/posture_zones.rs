@@ -76,7 +76,11 @@ fn the_planners_zone_angles_are_the_assessments() {
         close(deg(7), a.left.upper_arm_elevation_deg, "left upper arm");
         close(deg(8), a.head_inclination_deg, "head inclination");
         close(deg(10), a.neck_flexion_deg, "neck flexion");
-        for (i, arm, side) in [(11, &a.right, "right"), (15, &a.left, "left")] {
+        close(deg(11), a.neck_side_bend_deg, "neck side bend");
+        close(deg(12), -a.neck_side_bend_deg, "neck side bend right");
+        close(deg(13), a.neck_twist_deg, "neck twist");
+        close(deg(14), -a.neck_twist_deg, "neck twist right");
+        for (i, arm, side) in [(15, &a.right, "right"), (19, &a.left, "left")] {
             close(
                 deg(i),
                 arm.wrist_flexion_deg,
@@ -164,6 +168,9 @@ fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
             assert!((deg(&l, z) - 10.0).abs() < 1e-9);
         }
         assert!((deg(&l, Zone::NeckFlexion) - 25.0).abs() < 1e-9);
+        for z in [Zone::NeckSideLeft, Zone::NeckSideRight] {
+            assert!((deg(&l, z) - 10.0).abs() < 1e-9);
+        }
         assert!((deg(&l, Zone::HeadInclination) - 85.0).abs() < 1e-9);
     }
 }
@@ -233,6 +240,10 @@ fn planned_postures_keep_the_zones_the_targets_allow_and_report_the_rest() {
             (Zone::HeadInclination, a.head_inclination_deg),
             (Zone::HeadBack, -a.head_inclination_deg),
             (Zone::NeckFlexion, a.neck_flexion_deg),
+            (Zone::NeckSideLeft, a.neck_side_bend_deg),
+            (Zone::NeckSideRight, -a.neck_side_bend_deg),
+            (Zone::NeckTwistLeft, a.neck_twist_deg),
+            (Zone::NeckTwistRight, -a.neck_twist_deg),
             (Zone::RightWristFlexed, a.right.wrist_flexion_deg),
             (Zone::RightWristExtended, -a.right.wrist_flexion_deg),
             (Zone::RightWristRadial, a.right.wrist_deviation_deg),

@@ -318,7 +318,9 @@ fn max_twist_deg(task: &Task, plan: &Plan) -> f64 {
 /// Free to step and turn, the side transfer is done facing each side: without the acceptable
 /// posture zones the fixed stance twists the trunk beyond 20° to reach the bin; with them (the
 /// default) the twist is held at ISO 11226's 10° either way, and the fixed stance pays for it
-/// elsewhere — the placed feet's plan tires less than half as much and goes beyond no zone.
+/// elsewhere — the placed feet's plan tires at least a quarter less and goes beyond no zone.
+/// (Measured 2026-12-05: 0.61 × the fixed stance's total with the worker looking at the work; 0.18
+/// before, when the placed worker held the part behind the trunk, unseen.)
 /// (Without the zones, how far the placed worker's trunk twists is a near-tie — a twist of
 /// 10–25° costs almost no fatigue — so it is not asserted.)
 #[test]
@@ -358,7 +360,7 @@ fn turning_the_feet_removes_the_twist_of_a_side_transfer() {
         );
     }
     assert!(
-        plan.summary.total_u < 0.5 * fixed_plan.summary.total_u,
+        plan.summary.total_u < 0.75 * fixed_plan.summary.total_u,
         "placed feet U {} against fixed {}",
         plan.summary.total_u,
         fixed_plan.summary.total_u
@@ -433,12 +435,17 @@ fn the_head_looks_at_the_gaze_point() {
              rest_s: 5.0\ncycles: 20\n"
         )
     };
-    let free = Task::from_yaml_str(&yaml(""), &root().join("look.yaml")).unwrap();
-    let looking = Task::from_yaml_str(
+    let free = Task::from_yaml_str(&yaml(", gaze_free: true"), &root().join("look.yaml")).unwrap();
+    assert_eq!(free.phases[0].gaze_m(), None);
+    // without gaze_m the worker looks at the middle of the phase's hand targets, here the panel
+    let looking = Task::from_yaml_str(&yaml(""), &root().join("look.yaml")).unwrap();
+    assert_eq!(looking.phases[0].gaze_m(), Some(panel));
+    let given = Task::from_yaml_str(
         &yaml(", gaze_m: [0.35, -0.15, 1.80]"),
         &root().join("look.yaml"),
     )
     .unwrap();
+    assert_eq!(given.phases[0].gaze_m(), looking.phases[0].gaze_m());
     let (pf, pl) = (plan(&free), plan(&looking));
     let (af, al) = (
         gaze_angle_deg(&free, &pf.summary.phases[0].q_rad, &panel),

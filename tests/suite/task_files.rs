@@ -262,6 +262,14 @@ fn values_are_refused_with_the_field_and_the_value() {
         &[&format!("{phase}.load_kg"), "hand_force_n", "not both"],
     );
     refused(
+        "gaze_both.yaml",
+        &BASE.replace(
+            "load_kg: 2.0",
+            "load_kg: 2.0, gaze_m: [0.3, 0, 1.2], gaze_free: true",
+        ),
+        &[&format!("{phase}.gaze_free"), "gaze_m", "not both"],
+    );
+    refused(
         "force_nan.yaml",
         &BASE.replace("load_kg: 2.0", "hand_force_n: [0, .nan, -10]"),
         &[&format!("{phase}.hand_force_n"), "finite"],

@@ -169,6 +169,9 @@ pub struct AssessArgs {
     /// optimum, for comparison).
     #[arg(long)]
     pub no_zones: bool,
+    /// Leave every phase's head free instead of looking at its work (for comparison).
+    #[arg(long)]
+    pub no_gaze: bool,
     /// Write the result as one JSON document on standard output.
     #[arg(long)]
     pub json: bool,
@@ -204,6 +207,7 @@ impl AssessArgs {
             adapt: !self.no_adapt,
             fatigue_only: self.fatigue_only,
             zones: !self.no_zones,
+            gaze: !self.no_gaze,
             ..Default::default()
         };
         if let Some(t) = self.qp_tolerance {
