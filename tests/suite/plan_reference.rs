@@ -19,9 +19,18 @@
 //!    and shelf_two_hands, and the fatigue-only totals still move with the QP's precision (see
 //!    tests/data/reference/README.md).
 //!
-//! Every number asserted against comes from the reference's own files; nothing produced by
-//! posture-opt is copied into an assertion.
+//! With the zones and the gaze (`results_zones/`, the statement's fatigue-only objective
+//! `ln(ΣU + 1e-3) + 10 Σv`): the same objective consistency, the reference's 23 zone angles equal
+//! posture-opt's on its best postures, and the zoned fatigue-only plan is no worse than the
+//! median of the reference's sustainable whole-plan local optima (shelf a known miss, held
+//! within its measured gap to the reference's best).
+//!
+//! Every number asserted against comes from the reference's own files (the known miss's gap
+//! excepted: a measured bound); nothing produced by posture-opt is copied into an assertion.
 
+use posture_opt::body::{StaticsData, forward_kinematics};
+use posture_opt::plan::Task;
+use posture_opt::plan::zones::{ZONE_ROWS, ZoneWork};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -185,9 +194,21 @@ fn median(v: &[f64]) -> Option<f64> {
     }
 }
 
-/// Every task with committed reference results.
+/// Every task with committed fatigue-only results without zones or gaze (`results/`).
 fn references() -> Vec<Reference> {
-    let dir = refdir().join("results");
+    let out = references_in("results");
+    assert!(
+        out.iter().any(|r| r.key == "shelf"),
+        "tests/data/reference/results/ has no shelf.json"
+    );
+    out
+}
+
+/// Every task with committed results in `tests/data/reference/<sub>/`: `results` (fatigue only,
+/// without zones or gaze) or `results_zones` (fatigue only within the zones, every phase looking
+/// at its work: the objective `ln(ΣU + 1e-3) + 10 Σv`).
+fn references_in(sub: &str) -> Vec<Reference> {
+    let dir = refdir().join(sub);
     let mut out = Vec::new();
     for e in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
         let p = e.unwrap().path();
@@ -208,11 +229,38 @@ fn references() -> Vec<Reference> {
         });
     }
     out.sort_by(|a, b| a.key.cmp(&b.key));
-    assert!(
-        out.iter().any(|r| r.key == "shelf"),
-        "tests/data/reference/results/ has no shelf.json"
-    );
     out
+}
+
+/// `plan TASK --no-adapt OPTIONS --json` of each reference's task, run side by side (one process
+/// each), by task key.
+fn plans_side_by_side<'a>(
+    refs: impl Iterator<Item = &'a Reference>,
+    options: &[&str],
+) -> BTreeMap<String, Value> {
+    let refs: Vec<&Reference> = refs.collect();
+    std::thread::scope(|s| {
+        let handles: Vec<_> = refs
+            .iter()
+            .map(|r| {
+                s.spawn(move || {
+                    let task = r.task();
+                    let mut args = vec!["plan", task.as_str(), "--no-adapt"];
+                    args.extend_from_slice(options);
+                    args.push("--json");
+                    (r.key.clone(), posture_opt_json(&args))
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    })
+}
+
+/// Both sets of results.
+fn all_references() -> Vec<Reference> {
+    let mut v = references();
+    v.extend(references_in("results_zones"));
+    v
 }
 
 #[test]
@@ -232,7 +280,7 @@ fn reference_inputs_are_the_repository_files() {
         inputs.join("fatigue_sets.yaml"),
         root().join("data/fatigue_sets.yaml"),
     );
-    for r in references() {
+    for r in all_references() {
         same_yaml(
             inputs.join(format!("{}.yaml", r.key)),
             root().join(r.task()),
@@ -242,7 +290,7 @@ fn reference_inputs_are_the_repository_files() {
         stale.push("inputs/worker.urdf differs from robots/worker.urdf".into());
     }
     // tasks without `robot:` use the generated worker; the reference holds its URDF
-    for r in references() {
+    for r in all_references() {
         let task = yaml(&root().join(r.task()));
         if task.get("robot").is_some_and(|v| !v.is_null()) {
             continue;
@@ -287,7 +335,7 @@ fn reference_inputs_are_the_repository_files() {
 #[test]
 fn reference_best_plans_evaluate_to_the_reference_totals() {
     let mut bad = Vec::new();
-    for r in references() {
+    for r in all_references() {
         assert_eq!(
             r.json["feasible"]["ok"],
             Value::Bool(true),
@@ -373,28 +421,10 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
         })
         .collect();
     assert!(refs.len() >= 3, "fewer than three tasks to compare");
-    // the planners run side by side (one process each)
-    let plans: BTreeMap<String, Value> = std::thread::scope(|s| {
-        let handles: Vec<_> = refs
-            .iter()
-            .map(|(r, _)| {
-                s.spawn(move || {
-                    let task = r.task();
-                    let plan = posture_opt_json(&[
-                        "plan",
-                        &task,
-                        "--no-adapt",
-                        "--fatigue-only",
-                        "--no-zones",
-                        "--no-gaze",
-                        "--json",
-                    ]);
-                    (r.key.clone(), plan)
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap()).collect()
-    });
+    let plans = plans_side_by_side(
+        refs.iter().map(|(r, _)| r),
+        &["--fatigue-only", "--no-zones", "--no-gaze"],
+    );
     let mut bad = Vec::new();
     let mut stale = Vec::new();
     for (r, med) in &refs {
@@ -460,4 +490,145 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
         "plan worse than the reference's median local optimum:\n  {}",
         bad.join("\n  ")
     );
+}
+
+/// The reference's names of the 23 zone angles, in the planner's order (`Zone::ALL`).
+const REFERENCE_ZONE_NAMES: [&str; ZONE_ROWS] = [
+    "trunk inclination (forward)",
+    "trunk leaning back",
+    "trunk side bending left",
+    "trunk side bending right",
+    "trunk twist left",
+    "trunk twist right",
+    "right upper-arm elevation",
+    "left upper-arm elevation",
+    "head inclination (forward)",
+    "head tilted back",
+    "neck flexion",
+    "neck side bending left",
+    "neck side bending right",
+    "neck twist left",
+    "neck twist right",
+    "right wrist flexion",
+    "right wrist extension",
+    "right wrist radial deviation",
+    "right wrist ulnar deviation",
+    "left wrist flexion",
+    "left wrist extension",
+    "left wrist radial deviation",
+    "left wrist ulnar deviation",
+];
+
+/// The reference's own implementation of the statement's 23 zone angles, on its best postures,
+/// gives posture-opt's (`ZoneWork::angles_rad`, which the planner constrains and the plan reports).
+#[test]
+fn the_reference_zone_angles_are_the_planners() {
+    let refs = references_in("results_zones");
+    assert!(!refs.is_empty(), "no results_zones/");
+    let mut bad = Vec::new();
+    let mut compared = 0;
+    for r in &refs {
+        let task = Task::from_file(root().join(r.task())).unwrap();
+        let m = &task.model;
+        let zw = ZoneWork::new(m).expect("the generated worker");
+        let mut data = StaticsData::new(m, 0);
+        let postures = r.json["postures"].as_object().expect("postures");
+        for (name, posture) in postures {
+            let mut q = vec![0.0; m.nq()];
+            for (joint, v) in posture.as_object().expect("posture") {
+                let k = m
+                    .q_index(joint)
+                    .unwrap_or_else(|_| panic!("{}: unknown joint {joint}", r.key));
+                q[k] = num(v, joint);
+            }
+            forward_kinematics(m, &mut data, &q);
+            let ours = zw.angles_rad(m, &data, &q);
+            let theirs = &r.json["zone_angles_deg"][name];
+            for (i, zone) in REFERENCE_ZONE_NAMES.iter().enumerate() {
+                let t = num(&theirs[*zone], zone);
+                let o = ours[i].to_degrees();
+                compared += 1;
+                if (t - o).abs() > 1e-7 {
+                    bad.push(format!(
+                        "{} '{name}' {zone}: reference {t}°, posture-opt {o}°",
+                        r.key
+                    ));
+                }
+            }
+        }
+    }
+    println!("{compared} zone angles compared");
+    assert!(
+        bad.is_empty(),
+        "zone angles disagree:\n  {}",
+        bad.join("\n  ")
+    );
+}
+
+/// Where posture-opt's zoned fatigue-only plan falls short of the reference's best by more than
+/// its median local optimum allows: the measured gap, held as a bound (docs/results.md, "Against
+/// an independent reference").
+const ZONED_KNOWN_MISSES: &[(&str, f64)] = &[
+    // measured 2026-12-05: ours 4.6821 against the reference's best 4.6314 (U 108.0 against
+    // 102.7 min), above 7 of its 9 whole-plan local optima
+    ("shelf", 0.06),
+];
+
+/// With the zones and the gaze (the statement's fatigue-only objective `ln(ΣU + 1e-3) + 10 Σv`),
+/// `plan --no-adapt --fatigue-only` is no worse than the median of the reference's whole-plan
+/// local optima that exhaust no muscle group, except the known misses, held within their measured
+/// gap to the reference's best.
+#[test]
+fn zoned_fatigue_only_plan_against_the_reference() {
+    let refs = references_in("results_zones");
+    assert!(!refs.is_empty(), "no results_zones/");
+    let plans = plans_side_by_side(refs.iter(), &["--fatigue-only"]);
+    let mut bad = Vec::new();
+    for r in &refs {
+        let plan = &plans[&r.key];
+        let s = &plan["summary"];
+        assert_eq!(s["zones"], Value::Bool(true), "{}", r.key);
+        assert_eq!(s["gaze"], Value::Bool(true), "{}", r.key);
+        let ours = num(
+            s["passes"]
+                .as_array()
+                .expect("passes")
+                .last()
+                .expect("a pass"),
+            "summary.passes",
+        );
+        let mut optima: Vec<f64> = r.json["joint_local_optima"]
+            .as_array()
+            .expect("joint_local_optima")
+            .iter()
+            .filter(|d| d["exhausted"] == Value::Bool(false))
+            .map(|d| num(&d["objective"], "objective"))
+            .collect();
+        optima.sort_by(f64::total_cmp);
+        let best = num(&r.json["best_objective"], "best_objective");
+        let med = median(&optima).expect("sustainable local optima");
+        println!(
+            "{:<16} posture-opt objective {ours:.6} (U {:.3} min) | reference best {best:.6} (U {:.3}), \
+             median of {} sustainable whole-plan local optima {med:.6} | ours - best {:.4}",
+            r.key,
+            num(&s["total_u"], "total_u"),
+            r.best(),
+            optima.len(),
+            ours - best
+        );
+        match ZONED_KNOWN_MISSES.iter().find(|(k, _)| *k == r.key) {
+            Some((_, gap)) if ours - best > *gap => bad.push(format!(
+                "{}: {ours} is {:.4} above the reference's best {best}, beyond the known miss's {gap}",
+                r.key,
+                ours - best
+            )),
+            Some(_) => {}
+            None if ours > med + MEDIAN_REL_SLACK * med.abs() => bad.push(format!(
+                "{}: {ours} above the reference's median local optimum {med}",
+                r.key
+            )),
+            None => {}
+        }
+    }
+    assert!(bad.is_empty(), "\n  {}", bad.join("\n  "));
 }

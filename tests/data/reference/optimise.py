@@ -43,10 +43,15 @@ GROUPS = {
 
 
 class Search:
-    def __init__(self, key, budget, log=print, n_random=16, resume=None, seed_offset=0):
+    def __init__(self, key, budget, log=print, n_random=16, resume=None, seed_offset=0,
+                 zones=False, checkpoint=None, checkpoint_every=100.0):
         self.key = key
         self.t = M.load_task(key)
-        self.pr = M.Problem(self.t)
+        self.zones = zones
+        self.pr = M.Problem(self.t, zones=zones)
+        self.checkpoint_fn = checkpoint
+        self.checkpoint_every = checkpoint_every
+        self.last_checkpoint = time.time()
         self.full = JointNLP(self.pr)
         self.b = self.t.body
         self.budget = budget
@@ -54,7 +59,7 @@ class Search:
         self.log = log
         self.n_random = n_random
         self.best = None          # dict(U, qs, fs, origin per phase)
-        self.joint_optima = []    # (U, label)
+        self.joint_optima = []    # (objective, label, total U)
         self.phase_pool = {gi: [] for gi in range(self.t.P)}   # (q, label)
         self.starts = []          # labels of all local solves
         self.solves = 0
@@ -67,9 +72,25 @@ class Search:
         return time.time() - self.t0
 
     def plan_total(self, qs):
+        """The plan's objective (the total U; with zones ln(U + 1e-3) + 10 sum v) and loads."""
         fs = [self.full.pm[gi].loads_from_q(qs[gi]) for gi in range(self.t.P)]
         U, c, tex = self.pr.fatigue(fs)
-        return float(U.sum()), fs
+        return self.pr.objective(float(U.sum()), qs), fs
+
+    def plan_u(self, qs):
+        fs = [self.full.pm[gi].loads_from_q(qs[gi]) for gi in range(self.t.P)]
+        U, c, tex = self.pr.fatigue(fs)
+        return float(U.sum())
+
+    def maybe_checkpoint(self, force=False):
+        if self.checkpoint_fn is None or self.best is None:
+            return
+        if force or time.time() - self.last_checkpoint >= self.checkpoint_every:
+            try:
+                self.checkpoint_fn(self)
+            except Exception as ex:  # a failed checkpoint must not stop the search
+                self.log(f"   checkpoint failed {ex!r}")
+            self.last_checkpoint = time.time()
 
     def feasible_q(self, gi, q):
         pm = self.full.pm[gi]
@@ -84,6 +105,9 @@ class Search:
         if np.min(bal) < -1e-7:
             return False
         if np.any(q < self.b.lower - 1e-12) or np.any(q > self.b.upper + 1e-12):
+            return False
+        pts = self.pr.gaze_points[gi] if self.zones else []
+        if pts and np.min(self.pr.zm.gaze_values(q, pts)) < -1e-7:
             return False
         return True
 
@@ -101,8 +125,11 @@ class Search:
                 return False
         old = None if self.best is None else self.best["U"]
         self.best = dict(U=U, qs=[q.copy() for q in qs], fs=fs, origin=list(origins), feas=feas)
+        self.best["total_u"] = self.plan_u(qs) if self.zones else U
         self.log(f"[{self.key} {self.elapsed():7.1f}s] best {U:.10g} (was {old}) by {label}"
+                 + (f" [total U {self.best['total_u']:.8g}]" if self.zones else "")
                  + (f" [{nbad} phase(s) still infeasible]" if nbad else ""))
+        self.maybe_checkpoint()
         return True
 
     # --- local solves ---------------------------------------------------------------------------
@@ -129,13 +156,14 @@ class Search:
                 if best is None or U < best[0]:
                     best = (U, qs)
         if best is not None:
-            self.joint_optima.append((best[0], label))
+            self.joint_optima.append((best[0], label, self.plan_u(best[1])))
             for gi in range(self.t.P):
                 self.phase_pool[gi].append((best[1][gi], label))
             self.offer(best[1], [label] * self.t.P, f"joint {label}")
             self.log(f"   joint {label}: {best[0]:.8g}")
         else:
             self.log(f"   joint {label}: no feasible result")
+        self.maybe_checkpoint()
         return best
 
     def phase_solve(self, gi, q0, label, paths=("slsqp", "ipopt"), parent=None):
@@ -174,6 +202,7 @@ class Search:
             origins = list(self.best["origin"])
             origins[gi] = (parent + " > " if parent else "") + out[2]
             self.offer(qs, origins, f"{self.t.groups[gi]['name']}: {out[2]}")
+        self.maybe_checkpoint()
         return out
 
     # --- stages ---------------------------------------------------------------------------------
@@ -188,12 +217,13 @@ class Search:
         B = self.budget
         if self.resume:
             self.load_previous(self.resume)
-        else:
-            # 1. joint multi-start
-            for fam in S.FAMILIES:
-                if self.elapsed() > 0.2 * B:
-                    break
-                self.joint_solve(self.seeds_for(S.FAMILIES[fam], None), f"joint:{fam}")
+        # 1. joint multi-start (on --resume: the seed families not started before)
+        for fam in S.FAMILIES:
+            if self.elapsed() > 0.2 * B:
+                break
+            if f"joint:{fam}" in self.starts:
+                continue
+            self.joint_solve(self.seeds_for(S.FAMILIES[fam], None), f"joint:{fam}")
         if self.best is None:
             # bootstrap: the IK projection of the rest posture (possibly infeasible); the
             # per-phase solves below make the phases feasible one by one
@@ -285,7 +315,8 @@ class Search:
         t = self.t
         qs = [self.b.q_from_dict(prev["postures"][g["name"]]) for g in t.groups]
         origins = [prev["best_found_by"][g["name"]] for g in t.groups]
-        self.joint_optima = [(d["total_u_min"], d["start"]) for d in prev["joint_local_optima"]]
+        self.joint_optima = [(d.get("objective", d["total_u_min"]), d["start"], d["total_u_min"])
+                             for d in prev["joint_local_optima"]]
         self.starts = list(prev["starts"]["labels"])
         self.solves = prev["starts"]["local_solves"]
         self.prev_runtime = prev["runtime_s"]
@@ -296,7 +327,7 @@ class Search:
             for g_i, g in enumerate(t.groups):
                 for d in pool.get(g["name"], []):
                     self.phase_pool[g_i].append((self.b.q_from_dict(d["posture"]), d["label"]))
-        ok = self.offer(qs, origins, f"previous run ({prev['best_total_u_min']:.10g})")
+        ok = self.offer(qs, origins, f"previous run ({prev.get('best_objective', prev['best_total_u_min']):.10g})")
         if not ok:
             raise RuntimeError("previous best plan is not feasible")
         for gi in range(t.P):
@@ -317,7 +348,7 @@ class Search:
             before = self.best["U"]
             try:
                 x0 = S.initial_x(nlp, self.best["qs"])
-                r = S.solve_ipopt(nlp, x0, max_cpu_time=120, tol=1e-11)
+                r = S.solve_ipopt(nlp, x0, max_cpu_time=90, tol=1e-11)
                 qs = [np.clip(q, self.b.lower, self.b.upper) for q in nlp.split(r[0])[0]]
                 self.offer(qs, [o + f" > {label}-joint" for o in self.best["origin"]],
                            f"{label} joint ipopt")
@@ -329,19 +360,49 @@ class Search:
             if self.best["U"] > before - 1e-9 * abs(before):
                 break
 
-    def result(self):
+    def result(self, light=False):
         t, b = self.t, self.b
         rep = self.pr.evaluate(self.best["qs"])
         # spread of the per-phase local optima with the other phases at the best plan
         phase_optima = {}
         for gi in range(t.P):
+            if light:
+                continue
             vals = sorted(set(round(self.value_with(gi, q), 6) for q, _ in self.phase_pool[gi]))
             phase_optima[t.groups[gi]["name"]] = [v for v in vals if np.isfinite(v)]
         postures = {g["name"]: rep["phases"][gi]["posture"] for gi, g in enumerate(t.groups)}
         residuals = {g["name"]: rep["phases"][gi]["residuals"] for gi, g in enumerate(t.groups)}
+        extra = {}
+        if self.zones:
+            extra = dict(
+                zones_on=True,
+                objective_formula="ln(total U [min] + 1e-3) + 10 * sum of zone slacks [rad] "
+                                  "(per distinct posture)",
+                best_objective=rep["objective"],
+                zone_limits_deg={g["name"]: dict(zip(self.pr.Z.ROW_NAMES,
+                                                     np.degrees(self.pr.zone_limits[gi]).tolist()))
+                                 for gi, g in enumerate(t.groups)},
+                holds_s={ph.name: h for ph, h in zip(t.phases, self.pr.holds)},
+                zone_slack_sum_rad=float(sum(p["zone_slack_sum_rad"] for p in rep["phases"])),
+                zones_exceeded_note="rows beyond their limit by more than 1e-4 deg (zone_slack_sum_rad counts every positive slack)",
+                zones_exceeded={g["name"]: [dict(row=z["row"], angle_deg=z["angle_deg"],
+                                                 limit_deg=z["limit_deg"], excess_deg=z["excess_deg"],
+                                                 slack_rad=z["slack_rad"])
+                                            for z in rep["phases"][gi]["zones"] if z["excess_deg"] > 1e-4]
+                                for gi, g in enumerate(t.groups)},
+                zone_angles_deg={g["name"]: {z["row"]: z["angle_deg"] for z in rep["phases"][gi]["zones"]}
+                                 for gi, g in enumerate(t.groups)},
+                gaze={g["name"]: dict(points=rep["phases"][gi].get("gaze_points"),
+                                      margin=rep["phases"][gi]["residuals"].get("gaze_margin"),
+                                      angle_deg=rep["phases"][gi]["residuals"].get("gaze_angle_deg"))
+                      for gi, g in enumerate(t.groups)},
+                joint_local_optima_objectives=sorted(o for o, _, _ in self.joint_optima),
+                checkpoint=light,
+            )
         return dict(
             task=t.key,
             task_name=t.name,
+            **extra,
             best_total_u_min=rep["total_u_min"],
             exhausted=rep["exhausted"],
             exhaustion_time_min=rep["exhaustion_time_min"],
@@ -355,9 +416,10 @@ class Search:
             u_per_half_joint=rep["u_per_half_joint"],
             starts=dict(count=len(self.starts), local_solves=self.solves, labels=self.starts),
             best_found_by=dict(zip([g["name"] for g in t.groups], self.best["origin"])),
-            local_optima_totals=sorted(u for u, _ in self.joint_optima),
-            joint_local_optima=sorted([dict(total_u_min=u, start=lab) for u, lab in self.joint_optima],
-                                      key=lambda d: d["total_u_min"]),
+            local_optima_totals=sorted(u for _, _, u in self.joint_optima),
+            joint_local_optima=sorted([dict(objective=o, total_u_min=u, start=lab)
+                                       for o, lab, u in self.joint_optima],
+                                      key=lambda d: d["objective"]),
             phase_local_optima_totals=phase_optima,
             runtime_s=self.elapsed() + self.prev_runtime,
             budget_s=self.budget,
@@ -382,14 +444,14 @@ def _stats(v):
                 max=v[-1] if v else None)
 
 
-def augment(res, task, pool):
+def augment(res, task, pool, zones=False):
     """Adds what a consumer of results/<task>.json needs without this package: the schedule of
     one cycle (to replay the best plan as a recording), whether each whole-plan local optimum
     exhausts a muscle group, the spread of the local optima, and the input files used (with their
     SHA-256). pool: distinct phase name -> list of (label, posture dict), as in <task>.pool.json;
     a whole-plan local optimum's postures carry its start label ("joint:<family>")."""
     res["schedule"] = task.schedule()
-    prob = M.Problem(task)
+    prob = M.Problem(task, zones=zones)
     b = task.body
     for d in res.get("joint_local_optima", []):
         qs = []
@@ -400,6 +462,7 @@ def augment(res, task, pool):
             continue
         rep = prob.evaluate(qs)
         assert abs(rep["total_u_min"] - d["total_u_min"]) <= 1e-9 * abs(d["total_u_min"]), d
+        d["objective_check"] = rep["objective"]
         d["exhausted"] = rep["exhausted"]
         d["exhaustion_time_min"] = rep["exhaustion_time_min"]
         d["exhausted_half_joints"] = sorted(rep["exhausted_half_joints"])
@@ -434,6 +497,10 @@ def main():
     ap.add_argument("--out", default=None)
     ap.add_argument("--resume", default=None, help="results JSON of a previous run to continue")
     ap.add_argument("--seed-offset", type=int, default=0)
+    ap.add_argument("--zones", action="store_true",
+                    help="posture zones (elastic) and gaze on; objective ln(U + 1e-3) + 10 sum v; "
+                         "results go to results_zones/ unless --out is given")
+    ap.add_argument("--checkpoint-every", type=float, default=100.0)
     ap.add_argument("--pool-swap-only", action="store_true",
                     help="only apply the final pool swap (Search.pool_swap) to an existing result "
                          "and its .pool.json (--out or results/TASK.json), then rewrite both")
@@ -443,14 +510,14 @@ def main():
     a = ap.parse_args()
     key = os.path.splitext(os.path.basename(a.task))[0]
     here = os.path.dirname(os.path.abspath(__file__))
-    out = a.out or os.path.join(here, "results", f"{key}.json")
+    out = a.out or os.path.join(here, "results_zones" if a.zones else "results", f"{key}.json")
     os.makedirs(os.path.dirname(out), exist_ok=True)
     if a.augment_only:
         with open(out) as fh:
             res = json.load(fh)
         with open(out.replace(".json", ".pool.json")) as fh:
             pool = {g: [(d["label"], d["posture"]) for d in v] for g, v in json.load(fh).items()}
-        res = augment(res, M.load_task(key), pool)
+        res = augment(res, M.load_task(key), pool, zones=a.zones)
         with open(out, "w") as fh:
             json.dump(res, fh, indent=1)
         return
@@ -461,7 +528,21 @@ def main():
         logf.write(msg + "\n")
         logf.flush()
 
-    s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset)
+    def checkpoint(srch):
+        res_c, _ = srch.result(light=True)
+        res_c["inputs"] = {}
+        tmp = out + ".tmp"
+        with open(tmp, "w") as fh:
+            json.dump(res_c, fh, indent=1)
+        os.replace(tmp, out)
+        with open(out.replace(".json", ".pool.json") + ".tmp", "w") as fh:
+            json.dump(srch.pool_json(), fh)
+        os.replace(out.replace(".json", ".pool.json") + ".tmp", out.replace(".json", ".pool.json"))
+        log(f"   checkpoint written ({srch.elapsed():.0f} s, best {srch.best['U']:.10g})")
+
+    s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset,
+               zones=a.zones, checkpoint=checkpoint, checkpoint_every=a.checkpoint_every)
+    S.PROGRESS_HOOK = s.maybe_checkpoint
     if a.pool_swap_only:
         with open(out) as fh:
             s.budget = json.load(fh).get("budget_s", a.budget)
@@ -471,13 +552,16 @@ def main():
     else:
         res, rep = s.run()
     res = augment(res, s.t, {g["name"]: [(lab, s.b.q_to_dict(q)) for q, lab in s.phase_pool[gi]]
-                             for gi, g in enumerate(s.t.groups)})
+                             for gi, g in enumerate(s.t.groups)}, zones=a.zones)
     with open(out.replace(".json", ".pool.json"), "w") as fh:
         json.dump(s.pool_json(), fh)
     with open(out, "w") as fh:
         json.dump(res, fh, indent=1)
     with open(out.replace(".json", ".report.json"), "w") as fh:
         json.dump(rep, fh, indent=1)
+    if a.zones:
+        log(f"{key}: best objective {res['best_objective']:.10g}, zone slack sum "
+            f"{res['zone_slack_sum_rad']:.6g} rad")
     log(f"{key}: best total U {res['best_total_u_min']:.10g} min, exhausted {res['exhausted']}, "
         f"feasible {res['feasible']['ok']}, {res['starts']['count']} starts, {res['runtime_s']:.0f} s")
 

@@ -591,6 +591,292 @@ def check_distances():
     rec("distances vs brute-force sampling (max abs err, sampling 1e-3)", worst, worst < 1e-3)
 
 
+# ----------------------------------------------------------------------------------------------
+# 7. obstacles oriented by rpy_rad (task-format.md), against a hand computation
+# ----------------------------------------------------------------------------------------------
+def _hand_rpy(r, p, y):
+    """URDF convention written out: R = Rz(y) Ry(p) Rx(r)."""
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return Rz @ Ry @ Rx
+
+
+def check_rotated_box():
+    t = M.load_task("shelf")
+    raw = {"workstation": {"obstacles": [
+        {"name": "yawed", "box": {"size_m": [0.4, 0.2, 0.2]}, "position_m": [1.0, 0.0, 1.0],
+         "rpy_rad": [0.0, 0.0, np.pi / 4]},
+        {"name": "tilted", "box": {"size_m": [0.4, 0.2, 0.2]}, "position_m": [1.0, 0.0, 1.0],
+         "rpy_rad": [0.3, -0.5, 1.1]}]}}
+    t._build_obstacles(raw)
+    ob, ob2 = t.obstacles
+    errs = []
+    # (a) yaw 45 deg: a point 0.5 m from the centre along the box's own x axis is 0.5 - 0.2 away
+    c = np.array([1.0, 0.0, 1.0])
+    p = c + 0.5 * np.array([np.cos(np.pi / 4), np.sin(np.pi / 4), 0.0])
+    d, _ = geo.point_box_sd(p, ob["center"], ob["R"], ob["half"])
+    errs.append(abs(d - 0.3))
+    # (b) the same box, a point 0.5 m along WORLD x: in box axes (0.5 cos45, -0.5 sin45, 0),
+    # outside the half-extents (0.2, 0.1) by (0.15355, 0.25355): distance their norm
+    p = c + np.array([0.5, 0.0, 0.0])
+    d, _ = geo.point_box_sd(p, ob["center"], ob["R"], ob["half"])
+    hand = np.hypot(0.5 * np.sqrt(0.5) - 0.2, 0.5 * np.sqrt(0.5) - 0.1)
+    errs.append(abs(d - hand))
+    # (c) inside: the centre is 0.1 deep (smallest half-extent) -> signed distance -0.1
+    d, _ = geo.point_box_sd(c, ob["center"], ob["R"], ob["half"])
+    errs.append(abs(d + 0.1))
+    # (d) roll-pitch-yaw: the rotation equals Rz(y) Ry(p) Rx(r) written out, and a point at box
+    # coordinates (0.3, 0.25, -0.05) is at distance hypot(0.1, 0.15) from it
+    Rh = _hand_rpy(0.3, -0.5, 1.1)
+    errs.append(float(np.max(np.abs(ob2["R"] - Rh))))
+    p = c + Rh @ np.array([0.3, 0.25, -0.05])
+    d, _ = geo.point_box_sd(p, ob2["center"], ob2["R"], ob2["half"])
+    errs.append(abs(d - np.hypot(0.1, 0.15)))
+    # (e) a zero-length capsule (radius 0.02) at that point: the capsule-obstacle distance
+    dd, _, _ = geo.capsule_obstacle(p, p, 0.02, 0, ob2["center"], ob2["R"], ob2["half"], 0.0, 0.0,
+                                    np.zeros(3), 0.0)
+    errs.append(abs(dd - (np.hypot(0.1, 0.15) - 0.02)))
+    # (f) rpy_deg is refused (not a field of task-format.md)
+    refused = False
+    try:
+        t._build_obstacles({"workstation": {"obstacles": [
+            {"name": "x", "box": {"size_m": [1, 1, 1]}, "rpy_deg": [0, 0, 45]}]}})
+    except ValueError:
+        refused = True
+    t._build_obstacles(t.raw)
+    rec("rotated box obstacle (rpy_rad) vs hand computation (max abs err)", max(errs),
+        max(errs) < 1e-12 and refused)
+
+
+# ----------------------------------------------------------------------------------------------
+# 8. posture zones and gaze (statement section 4)
+# ----------------------------------------------------------------------------------------------
+def _R(axis, deg):
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    if axis == "x":
+        return np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+    if axis == "y":
+        return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+
+
+def check_zone_angles():
+    from reference import zones as Z
+    I = np.eye(3)
+    down = np.array([0.0, 0.0, -1.0])
+    nowr = [(0.0, 0.0), (0.0, 0.0)]
+    names = Z.ROW_NAMES
+    worst = 0.0
+    cases = []
+
+    def expect(label, got, exp):
+        nonlocal worst
+        e = np.zeros(Z.NROW)
+        for k, v in exp.items():
+            e[names.index(k)] = np.radians(v)
+        # rows come in +/- pairs: fill the mirrored row
+        pairs = [(0, 1), (2, 3), (4, 5), (8, 9), (11, 12), (13, 14), (15, 16), (17, 18), (19, 20),
+                 (21, 22)]
+        for i, j in pairs:
+            if e[i] == 0 and e[j] != 0:
+                e[i] = -e[j]
+            elif e[j] == 0 and e[i] != 0:
+                e[j] = -e[i]
+        err = float(np.max(np.abs(got - e)))
+        worst = max(worst, err)
+        cases.append((label, np.degrees(err)))
+
+    # trunk flexed 30 deg forward (pelvis level): trunk inclination 30; the head and the hanging
+    # arms go with the trunk (head inclination 30, arm elevation 30); neck angles 0
+    RT = _R("y", 30)
+    expect("trunk flexed 30", Z.angles_from_frames(I, RT, RT, RT @ down, RT @ down, 0.0, nowr),
+           {"trunk inclination (forward)": 30, "head inclination (forward)": 30,
+            "right upper-arm elevation": 30, "left upper-arm elevation": 30})
+    # trunk leaning back 10
+    RT = _R("y", -10)
+    expect("trunk back 10", Z.angles_from_frames(I, RT, RT, down, down, 0.0, nowr),
+           {"trunk leaning back": 10, "head tilted back": 10})
+    # trunk bent 15 deg to the left (rotation about -x tilts z towards +y)
+    RT = _R("x", -15)
+    expect("trunk side bend left 15", Z.angles_from_frames(I, RT, RT, down, down, 0.0, nowr),
+           {"trunk side bending left": 15})
+    # trunk twisted 20 deg left while flexed 30: R_T = Ry(30) Rz(20): inclination 30, twist 20
+    RT = _R("y", 30) @ _R("z", 20)
+    expect("trunk flexed 30 + twist 20", Z.angles_from_frames(I, RT, I, down, down, 0.0, nowr),
+           {"trunk inclination (forward)": 30, "trunk twist left": 20,
+            "neck flexion": -30})
+    # the whole body turned 40 deg about the vertical (pelvis and trunk): nothing changes
+    RP = _R("z", 40)
+    expect("body turned 40", Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr), {})
+    # head turned 50 deg left and tilted back 20 deg in its own plane: R_H = Rz(50) Ry(-20)
+    # (trunk upright): head back 20, neck flexion -20, neck side bending 0
+    RH = _R("z", 50) @ _R("y", -20)
+    expect("head turned 50, back 20", Z.angles_from_frames(I, I, RH, down, down, np.radians(50), nowr),
+           {"head tilted back": 20, "neck flexion": -20, "neck twist left": 50})
+    # head bent 12 deg to the left against an upright trunk
+    RH = _R("x", -12)
+    expect("neck side bend left 12", Z.angles_from_frames(I, I, RH, down, down, 0.0, nowr),
+           {"neck side bending left": 12})
+    # arm raised forward to horizontal: elevation 90; the other abducted 45
+    expect("arms 90 / 45", Z.angles_from_frames(I, I, I, np.array([1.0, 0, 0]),
+                                                 np.array([0.0, np.sqrt(0.5), -np.sqrt(0.5)]), 0.0, nowr),
+           {"right upper-arm elevation": 90, "left upper-arm elevation": 45})
+    # wrists: joints directly
+    expect("wrists", Z.angles_from_frames(I, I, I, down, down, 0.0,
+                                          [(np.radians(17), np.radians(-8)), (np.radians(-25), np.radians(6))]),
+           {"right wrist flexion": 17, "right wrist radial deviation": -8, "left wrist flexion": -25,
+            "left wrist radial deviation": 6})
+    # the same from joint space: lumbar_flexion 30 deg only on the worker
+    t = M.load_task("shelf")
+    zm = Z.ZoneModel(t.body)
+    q = np.zeros(t.body.nq)
+    q[t.body.qidx["lumbar_flexion"]] = np.radians(30)
+    expect("joints: lumbar_flexion 30", zm.angles(q),
+           {"trunk inclination (forward)": 30, "head inclination (forward)": 30,
+            "right upper-arm elevation": 30, "left upper-arm elevation": 30})
+    q = np.zeros(t.body.nq)
+    q[t.body.qidx["neck_flexion"]] = np.radians(-20)
+    q[t.body.qidx["r_wrist_flexion"]] = 0.3
+    q[t.body.qidx["l_wrist_deviation"]] = -0.2
+    expect("joints: neck_flexion -20, wrists", zm.angles(q),
+           {"head tilted back": 20, "neck flexion": -20, "right wrist flexion": np.degrees(0.3),
+            "left wrist radial deviation": np.degrees(-0.2)})
+    q = np.zeros(t.body.nq)
+    q[t.body.qidx["lumbar_axial_rotation"]] = np.radians(25)
+    q[t.body.qidx["neck_axial_rotation"]] = np.radians(-30)
+    expect("joints: lumbar twist 25, neck twist -30", zm.angles(q),
+           {"trunk twist left": 25, "neck twist right": 30})
+    rec("zone angles on hand-built postures (max abs err, deg)",
+        {"worst_deg": float(np.degrees(worst)), "cases": cases}, np.degrees(worst) < 1e-9)
+
+    # limits
+    L = Z.limits_for_hold
+    checks = [
+        (np.degrees(L(3.0)[0]), 60.0), (np.degrees(L(60.0)[0]), 60.0),
+        (np.degrees(L(150.0)[0]), 40.0),           # 2.5 min: 20 + 40 (4 - 2.5)/3
+        (np.degrees(L(150.0)[6]), 30.0),           # 2.5 min arm: 20 + 40 (3 - 2.5)/2
+        (np.degrees(L(300.0)[0]), 20.0), (np.degrees(L(200.0)[6]), 20.0),
+        (np.degrees(L(10.0)[1]), 5.0), (np.degrees(L(10.0)[8]), 85.0),
+        (np.degrees(L(10.0)[10]), 25.0), (np.degrees(L(10.0)[13]), 45.0),
+        (np.degrees(L(10.0)[15]), 15.0), (np.degrees(L(10.0)[17]), 10.0)]
+    err = max(abs(a - b) for a, b in checks)
+    # the upper-arm row (cos L - cos theta)/sin L: 0 at the limit, about theta - L near it
+    th = np.radians(61.0)
+    Lr = np.radians(60.0)
+    row = (np.cos(Lr) - np.cos(th)) / np.sin(Lr)
+    err = max(err, abs(row - (th - Lr)) - 1e-4)
+    rec("zone limits from the hold (max abs err, deg)", err, err < 1e-9)
+
+    # holds: consecutive same-work runs, wrapping over the cycle's end when there is no rest
+    class P:
+        def __init__(self, w, d):
+            self.work_key, self.duration = w, d
+
+    class T:
+        pass
+
+    tt = T()
+    tt.phases = [P("a", 10), P("a", 20), P("b", 5), P("a", 30)]
+    tt.rest_s = 0.0
+    h0 = Z.phase_holds(tt)
+    tt.rest_s = 5.0
+    h1 = Z.phase_holds(tt)
+    ok = h0 == [60, 60, 5, 60] and h1 == [30, 30, 5, 30]
+    rec("hold durations (no rest: wraps; with rest: does not)", {"no_rest": h0, "rest": h1}, ok)
+
+
+def check_gaze_and_zone_jacobians():
+    from reference import zones as Z
+    out = {}
+    t = M.load_task("bench_assembly")
+    b = t.body
+    zm = Z.ZoneModel(b)
+    # eye point by hand from the URDF: head cylinder centre (0, 0, 0.12113), radius 0.0877
+    q = np.zeros(b.nq)
+    zm._fk(q)
+    Mh = zm.data.oMf[zm.f_head]
+    eye = Mh.translation + Mh.rotation @ np.array([0.8 * 0.0877, 0.0, 0.12113])
+    # a point on the line of sight (15 deg down, straight ahead) -> angle 0, margin 1 - cos 15
+    p_on = eye + 0.7 * np.array([np.cos(np.radians(15)), 0.0, -np.sin(np.radians(15))])
+    # a point straight ahead at eye height -> angle 15 (on the cone), margin 0
+    p_lvl = eye + np.array([0.5, 0.0, 0.0])
+    # 40 deg below horizontal, 10 deg to the left: angle between by hand
+    dv = np.array([np.cos(np.radians(40)) * np.cos(np.radians(10)),
+                   np.cos(np.radians(40)) * np.sin(np.radians(10)), -np.sin(np.radians(40))])
+    s = np.array([np.cos(np.radians(15)), 0.0, -np.sin(np.radians(15))])
+    p_off = eye + 0.6 * dv
+    v = zm.gaze_values(q, [p_on, p_lvl, p_off])
+    exp = np.array([1 - np.cos(np.radians(15)), 0.0, float(s @ dv) - np.cos(np.radians(15))])
+    e1 = float(np.max(np.abs(v - exp)))
+    # head turned 30 deg left (neck twist): a point 30 deg left on the line of sight is on it
+    q2 = q.copy()
+    q2[b.qidx["neck_axial_rotation"]] = np.radians(30)
+    zm._fk(q2)
+    Mh2 = zm.data.oMf[zm.f_head]
+    eye2 = Mh2.translation + Mh2.rotation @ np.array([0.8 * 0.0877, 0.0, 0.12113])
+    p2 = eye2 + 0.5 * (_R("z", 30) @ s)
+    e1 = max(e1, abs(zm.gaze_values(q2, [p2])[0] - (1 - np.cos(np.radians(15)))))
+    out["gaze_values_vs_hand_max_err"] = e1
+    # Jacobians (central differences, h = 1e-6) vs 5-point differences with h = 1e-4 at random
+    # postures
+    rng = np.random.default_rng(7)
+    pr = M.Problem(t, zones=True)
+    worst_g, worst_z = 0.0, 0.0
+    for _ in range(5):
+        qr = b.lower + rng.random(b.nq) * (b.upper - b.lower)
+        qr[b.qidx["pelvis_tz"]] = 0.9
+        pts = [np.array([0.45, -0.2, 1.0]), np.array([0.4, 0.3, 0.9])]
+        _, Jg = zm.gaze_jac(qr, pts)
+        _, Jz = zm.rows_jac(qr, pr.zone_limits[1])
+        h = 1e-4
+        for i in range(b.nq):
+            def fg(dx):
+                qq = qr.copy()
+                qq[i] += dx
+                return zm.gaze_values(qq, pts)
+
+            def fz(dx):
+                qq = qr.copy()
+                qq[i] += dx
+                return zm.rows(qq, pr.zone_limits[1])
+            dg = (-fg(2 * h) + 8 * fg(h) - 8 * fg(-h) + fg(-2 * h)) / (12 * h)
+            dz = (-fz(2 * h) + 8 * fz(h) - 8 * fz(-h) + fz(-2 * h)) / (12 * h)
+            worst_g = max(worst_g, float(np.max(np.abs(dg - Jg[:, i]))))
+            worst_z = max(worst_z, float(np.max(np.abs(dz - Jz[:, i]))))
+    out["gaze_jac_max_err"] = worst_g
+    out["zone_jac_max_err"] = worst_z
+    rec("gaze values vs hand computation; gaze and zone Jacobians vs 5-point differences", out,
+        e1 < 1e-12 and worst_g < 1e-6 and worst_z < 1e-6)
+    # the NLP with zones: inequality Jacobian (zone + gaze rows, slack columns) and objective
+    # gradient vs central differences
+    nlp = JointNLP(pr)
+    qs = [S.ik_project(nlp.pm[gi], t.rest_q) for gi in range(t.P)]
+    x = S.initial_x(nlp, qs)
+    S.set_active(nlp, x, 0.08)
+    J = nlp.ineq_jac(x)
+    g = nlp.obj_grad(x)
+    worst_i, worst_o = 0.0, 0.0
+    idx = list(rng.choice(len(x), 20, replace=False)) + [len(x) - 1, len(x) - 30]
+    for i in idx:
+        xp = x.copy()
+        xp[i] += 1e-6
+        xm = x.copy()
+        xm[i] -= 1e-6
+        worst_i = max(worst_i, float(np.max(np.abs((nlp.ineq(xp) - nlp.ineq(xm)) / 2e-6 - J[:, i]))))
+        worst_o = max(worst_o, abs((nlp.obj_value(xp) - nlp.obj_value(xm)) / 2e-6 - g[i]))
+    # the objective by the statement's formula from its parts
+    U = nlp.total_u(x)
+    vs = nlp.split_v(x)
+    f_exp = np.log(U + 1e-3) + 10 * sum(v.sum() for v in vs)
+    e_obj = abs(nlp.obj_value(x) - f_exp)
+    rec("NLP with zones: ineq Jacobian, objective gradient vs central differences; objective "
+        "= ln(U + 1e-3) + 10 sum v", dict(ineq_jac=worst_i, obj_grad=worst_o, obj_formula=e_obj),
+        worst_i < 1e-5 and worst_o < 1e-5 and e_obj < 1e-12)
+
+
 if __name__ == "__main__":
     check_fatigue()
     check_fatigue_grad()
@@ -599,6 +885,9 @@ if __name__ == "__main__":
     check_internal_wrench()
     check_nlp_jacobians()
     check_distances()
+    check_rotated_box()
+    check_zone_angles()
+    check_gaze_and_zone_jacobians()
     here = os.path.dirname(os.path.abspath(__file__))
     out = os.path.join(here, "results", "verification.json")
     if "--out" in sys.argv:

@@ -409,6 +409,15 @@ class Task:
                 forces[list(targets)[0]] = total
             ph.targets = targets
             ph.forces = forces
+            # gaze (statement: gaze_m, or without one the mean of the phase's hand targets)
+            ph.gaze_free = bool(p.get("gaze_free", False))
+            ph.gaze_m = None if p.get("gaze_m") is None else np.array(p["gaze_m"], float)
+            ph.gaze_point = ph.gaze_m if ph.gaze_m is not None else \
+                np.mean(np.array(list(targets.values())), axis=0)
+            # "same work": same targets, hand forces and gaze (for the zones' holds)
+            ph.work_key = (tuple((h, tuple(np.round(v, 12))) for h, v in sorted(targets.items())),
+                           tuple(np.round(forces["r"], 12)), tuple(np.round(forces["l"], 12)),
+                           ph.gaze_free, None if ph.gaze_m is None else tuple(np.round(ph.gaze_m, 12)))
             key = (tuple((h, tuple(np.round(v, 12))) for h, v in sorted(targets.items())),
                    tuple(np.round(forces["r"], 12)), tuple(np.round(forces["l"], 12)))
             for gi, gk in enumerate(groups):
@@ -432,7 +441,10 @@ class Task:
             pos = np.array(o.get("position_m", [0, 0, 0]), float)
             rot = np.eye(3)
             if o.get("rpy_deg") is not None:
-                rot = rpy_to_R(np.radians(o["rpy_deg"]))
+                # task-format.md: obstacles are oriented by `rpy_rad`; `rpy_deg` is not a field
+                raise ValueError(f"obstacle {o.get('name')}: unknown field rpy_deg (use rpy_rad)")
+            if o.get("rpy_rad") is not None:
+                rot = rpy_to_R(np.array(o["rpy_rad"], float))
             ob = dict(name=o.get("name", "obstacle"), kind=None, center=pos, R=rot,
                       half=np.zeros(3), radius=0.0, half_h=0.0, normal=np.zeros(3), offset=0.0,
                       floor=False)
@@ -763,14 +775,37 @@ class Pairs:
 # ----------------------------------------------------------------------------------------------
 # Evaluation of a plan
 # ----------------------------------------------------------------------------------------------
+ZONE_WEIGHT = 10.0    # statement: "the objective adds 10 * sum v_i (per radian, per distinct posture)"
+U_OFFSET = 1e-3       # statement: fatigue term ln(sum U + 1e-3)
+
+
 class Problem:
-    def __init__(self, task):
+    def __init__(self, task, zones=False):
         self.task = task
         self.body = task.body
         self.pairs = Pairs(task)
+        # zones + gaze (statement section 4), optional; with zones the fatigue-only objective is
+        # ln(sum U + 1e-3) + 10 * sum of the zone slacks
+        self.zones = bool(zones)
+        from . import zones as Z
+        self.Z = Z
+        self.zm = Z.ZoneModel(self.body)
+        self.zone_limits, self.holds = Z.group_limits(task)
+        self.gaze_points = Z.group_gaze_points(task) if self.zm.has_gaze else [[] for _ in range(task.P)]
         # rest loads (no hand load)
         tau, p = statics(self.body, task.rest_q, np.zeros(3), np.zeros(3))
         self.rest_loads, _ = half_loads(self.body, task.rest_q, tau)
+
+    def zone_slacks(self, gi, q):
+        """The smallest feasible slacks of a posture: v_i = max(g_i(q), 0) [rad]."""
+        return np.maximum(self.zm.rows(q, self.zone_limits[gi]), 0.0)
+
+    def objective(self, total_u, qs):
+        """The plan's objective: total U without zones; ln(U + 1e-3) + 10 sum v with zones."""
+        if not self.zones:
+            return float(total_u)
+        pen = sum(float(self.zone_slacks(gi, q).sum()) for gi, q in enumerate(qs))
+        return math.log(total_u + U_OFFSET) + ZONE_WEIGHT * pen
 
     def loads_matrix(self, phase_loads):
         return np.vstack(list(phase_loads) + [self.rest_loads])
@@ -876,6 +911,23 @@ class Problem:
                     joint_limit_violation_rad=float(lim_viol.max()),
                     max_unactuated_torque_nm=float(np.max(np.abs(unact))),
                 ))
+            if not is_rest:
+                Z = self.Z
+                L = self.zone_limits[gi]
+                th = self.zm.angles(q)
+                g = self.zm.rows(q, L)
+                rep["zones"] = [dict(row=Z.ROW_NAMES[i], angle_deg=math.degrees(th[i]),
+                                     limit_deg=math.degrees(L[i]), g=float(g[i]),
+                                     slack_rad=float(max(g[i], 0.0)),
+                                     excess_deg=float(max(math.degrees(th[i] - L[i]), 0.0)))
+                                for i in range(Z.NROW)]
+                rep["zone_slack_sum_rad"] = float(np.maximum(g, 0).sum())
+                pts = self.gaze_points[gi]
+                if pts:
+                    gv = self.zm.gaze_values(q, pts)
+                    rep["residuals"]["gaze_margin"] = float(gv.min())
+                    rep["residuals"]["gaze_angle_deg"] = self.zm.gaze_angles_deg(q, pts)
+                    rep["gaze_points"] = [list(map(float, x)) for x in pts]
             preps.append(rep)
         U, c, tex = self.fatigue(phase_loads)
         total = float(U.sum())
@@ -890,14 +942,18 @@ class Problem:
         report["max_unactuated_torque_nm"] = max_unact
         report["phases"] = preps[:-1]
         report["rest"] = preps[-1]
-        report["feasible"] = feasibility(report, t)
+        report["zones_on"] = self.zones
+        report["objective"] = self.objective(total, list(postures))
+        report["feasible"] = feasibility(report, t, gaze=self.zones)
         return report
 
 
-def feasibility(report, task, tol_eq=1e-4, tol_ineq=1e-6, tol_lim=1e-9):
+def feasibility(report, task, tol_eq=1e-4, tol_ineq=1e-6, tol_lim=1e-9, gaze=False):
     bad = []
     for ph in report["phases"]:
         r = ph["residuals"]
+        if gaze and r.get("gaze_margin") is not None and r["gaze_margin"] < -tol_ineq:
+            bad.append(f"{ph['name']}: gaze margin {r['gaze_margin']:.3g}")
         for h, v in r["hand_error_m"].items():
             if v > tol_eq:
                 bad.append(f"{ph['name']}: hand {h} error {v:.3g}")

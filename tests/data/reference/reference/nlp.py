@@ -167,10 +167,19 @@ class PhaseModel:
         a = self.active
         cl = e["dist"][a] - t.clearance - self.margin
         bal = self.edges_n @ e["p"] - self.edges_o - t.balance_margin - self.margin
-        val = np.concatenate([cl, bal])
+        pts = self.prob.gaze_points[self.gi] if self.prob.zones else []
+        if pts:
+            if jac:
+                gv, gJ = self.prob.zm.gaze_jac(q, pts)
+            else:
+                gv = self.prob.zm.gaze_values(q, pts)
+            gv = gv - self.margin
+        else:
+            gv, gJ = np.zeros(0), np.zeros((0, self.body.nq))
+        val = np.concatenate([cl, bal, gv])
         if not jac:
             return val
-        Jq = np.vstack([e["dist_J"][a], self.edges_n @ e["dp"]])
+        Jq = np.vstack([e["dist_J"][a], self.edges_n @ e["dp"], gJ])
         return val, Jq
 
     def min_clearance_slack(self, q):
@@ -201,7 +210,10 @@ class JointNLP:
         self.fixed_loads = None  # loads of phases not optimised (for a partial joint problem)
         nq, H = self.body.nq, self.body.H
         self.k = len(self.groups)
-        self.n = self.k * (nq + H)
+        # zones: one elastic slack per zone row per distinct posture, appended after the loads
+        self.zones = bool(prob.zones)
+        self.nz = prob.Z.NROW if self.zones else 0
+        self.n = self.k * (nq + H + self.nz)
         self.obj_scale = 1.0
         # the solvers minimise log(total U): the same minimisers, far better conditioned when U
         # spans orders of magnitude (a nearly exhausted muscle group makes U grow like e^{2kft})
@@ -217,13 +229,28 @@ class JointNLP:
         fs = [x[k * nq + i * H:k * nq + (i + 1) * H] for i in range(k)]
         return qs, fs
 
-    def pack(self, qs, fs):
+    def split_v(self, x):
+        nq, H, k, nz = self.body.nq, self.body.H, self.k, self.nz
+        o = k * (nq + H)
+        return [x[o + i * nz:o + (i + 1) * nz] for i in range(k)]
+
+    def v_cols(self, i):
+        nq, H, k, nz = self.body.nq, self.body.H, self.k, self.nz
+        o = k * (nq + H)
+        return list(range(o + i * nz, o + (i + 1) * nz))
+
+    def pack(self, qs, fs, vs=None):
+        if self.zones:
+            if vs is None:
+                vs = [np.maximum(self.prob.zm.rows(q, self.prob.zone_limits[gi]), 0.0) + 1e-6
+                      for q, gi in zip(qs, self.groups)]
+            return np.concatenate(list(qs) + list(fs) + list(vs))
         return np.concatenate(list(qs) + list(fs))
 
     def bounds(self):
         b = self.body
-        lo = list(b.lower) * self.k + [0.0] * (b.H * self.k)
-        hi = list(b.upper) * self.k + [20.0] * (b.H * self.k)
+        lo = list(b.lower) * self.k + [0.0] * (b.H * self.k) + [0.0] * (self.nz * self.k)
+        hi = list(b.upper) * self.k + [20.0] * (b.H * self.k) + [10.0] * (self.nz * self.k)
         return list(zip(lo, hi))
 
     def all_loads(self, fs):
@@ -246,6 +273,7 @@ class JointNLP:
         return np.ascontiguousarray(L[perm]), step_idx
 
     def obj_value(self, x):
+        self._vcache_x = x
         key = x.tobytes()
         if self._vcache is not None and self._vcache[0] == key:
             return self._transform(self._vcache[1])
@@ -279,7 +307,11 @@ class JointNLP:
             self._vcache = (key, val)
             for i in range(self.k):
                 g[k * nq + i * H:k * nq + (i + 1) * H] = G[i]
-            if self.log_objective:
+            if self.zones:
+                from .model import U_OFFSET, ZONE_WEIGHT
+                g = g / (val + U_OFFSET)
+                g[k * (nq + H):] = ZONE_WEIGHT
+            elif self.log_objective:
                 g = g / val
         self._gcache = (key, g)
         return g
@@ -293,6 +325,11 @@ class JointNLP:
         self._gcache = None
 
     def _transform(self, val):
+        if self.zones and self.weights is None:
+            from .model import U_OFFSET, ZONE_WEIGHT
+            x = self._vcache_x
+            pen = float(sum(v.sum() for v in self.split_v(x)))
+            return math.log(val + U_OFFSET) + ZONE_WEIGHT * pen
         if self.weights is None and self.log_objective:
             return math.log(val)
         return val
@@ -323,7 +360,14 @@ class JointNLP:
 
     def ineq(self, x):
         qs, fs = self.split(x)
-        return np.concatenate([self.pm[gi].ineq(qs[i]) for i, gi in enumerate(self.groups)])
+        out = []
+        vs = self.split_v(x) if self.zones else None
+        for i, gi in enumerate(self.groups):
+            out.append(self.pm[gi].ineq(qs[i]))
+            if self.zones:
+                # elastic zone rows: v_i - g_i(q) >= 0
+                out.append(vs[i] - self.prob.zm.rows(qs[i], self.prob.zone_limits[gi]))
+        return np.concatenate(out)
 
     def ineq_jac(self, x):
         qs, fs = self.split(x)
@@ -334,4 +378,10 @@ class JointNLP:
             B = np.zeros((len(v), self.n))
             B[:, i * nq:(i + 1) * nq] = Jq
             blocks.append(B)
+            if self.zones:
+                _, Jg = self.prob.zm.rows_jac(qs[i], self.prob.zone_limits[gi])
+                Bz = np.zeros((self.nz, self.n))
+                Bz[:, i * nq:(i + 1) * nq] = -Jg
+                Bz[:, self.v_cols(i)] = np.eye(self.nz)
+                blocks.append(Bz)
         return np.vstack(blocks)

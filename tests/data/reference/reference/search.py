@@ -10,6 +10,15 @@ from .nlp import JointNLP, PhaseModel
 
 warnings.filterwarnings("ignore", message="Values in x were outside bounds")
 
+# called at every IPOPT iteration (optimise.py sets it to its time-based checkpoint: every
+# computation re-runs its own forward kinematics, so a checkpoint between iterations is safe)
+PROGRESS_HOOK = None
+
+
+def _progress(*_):
+    if PROGRESS_HOOK is not None:
+        PROGRESS_HOOK()
+
 
 # ----------------------------------------------------------------------------------------------
 # seed templates
@@ -101,6 +110,14 @@ def project(pm, q_seed, maxiter=200):
 # ----------------------------------------------------------------------------------------------
 # local solve
 # ----------------------------------------------------------------------------------------------
+def _merit(nlp, x):
+    """What a local solve's candidates are ranked by: the total U, or with zones the objective
+    ln(U + 1e-3) + 10 sum v (its penalty over the optimised phases only)."""
+    if getattr(nlp, "zones", False):
+        return nlp.obj_value(x)
+    return nlp.total_u(x)
+
+
 def violation(nlp, x):
     """Largest constraint violation over ALL constraints (every clearance pair)."""
     e = nlp.eq(x)
@@ -141,10 +158,10 @@ def solve(nlp, x0, maxiter=400, rounds=4, ftol=1e-10, log=None, threshold=0.08):
         cons = [{"type": "eq", "fun": nlp.eq, "jac": nlp.eq_jac},
                 {"type": "ineq", "fun": nlp.ineq, "jac": nlp.ineq_jac}]
         res = minimize(nlp.obj_value, x, jac=nlp.obj_grad, method="SLSQP", constraints=cons, bounds=bounds,
-                       options={"maxiter": maxiter, "ftol": ftol})
+                       options={"maxiter": maxiter, "ftol": ftol}, callback=_progress)
         nit += res.nit
         xn = np.clip(res.x, lo, hi)
-        fn = nlp.total_u(xn)
+        fn = _merit(nlp, xn)
         vn = violation(nlp, xn)
         if log:
             log(f"   round {r}: status {res.status} nit {res.nit} f {fn:.8g} viol {vn:.2e} "
@@ -168,7 +185,7 @@ def solve(nlp, x0, maxiter=400, rounds=4, ftol=1e-10, log=None, threshold=0.08):
             break
         r += 1
     if best is None:
-        best = (x, nlp.total_u(x), violation(nlp, x))
+        best = (x, _merit(nlp, x), violation(nlp, x))
     return best[0], best[1], best[2], nit
 
 
@@ -205,6 +222,8 @@ class _IpoptProblem:
     def intermediate(self, alg_mod, iter_count, obj_value, inf_pr, inf_du, mu, d_norm,
                      regularization_size, alpha_du, alpha_pr, ls_trials):
         # our own CPU-time limit (checked every iteration, restoration phase included)
+        if PROGRESS_HOOK is not None:
+            PROGRESS_HOOK()
         return time.process_time() - self.cpu0 < self.cpu_limit
 
 
@@ -221,7 +240,7 @@ def _structure(nlp, x):
     blocks_in = []
     for i, gi in enumerate(nlp.groups):
         v = nlp.pm[gi].ineq(qs[i])
-        blocks_in.append(len(v))
+        blocks_in.append(len(v) + nlp.nz)
     for i in range(k):
         m = blocks_eq[i]
         cidx = list(range(i * nq, (i + 1) * nq)) + list(range(k * nq + i * H, k * nq + (i + 1) * H))
@@ -231,7 +250,7 @@ def _structure(nlp, x):
         r0 += m
     for i in range(k):
         m = blocks_in[i]
-        cidx = list(range(i * nq, (i + 1) * nq))
+        cidx = list(range(i * nq, (i + 1) * nq)) + (nlp.v_cols(i) if nlp.zones else [])
         for rr in range(r0, r0 + m):
             rows += [rr] * len(cidx)
             cols += cidx
@@ -272,7 +291,7 @@ def solve_ipopt(nlp, x0, tol=1e-9, maxiter=3000, threshold=0.08, log=None, print
         p.add_option("max_cpu_time", float(max_cpu_time) * 1.5)
         xn, info = p.solve(x)
         xn = np.clip(xn, lo, hi)
-        fn = nlp.total_u(xn)
+        fn = _merit(nlp, xn)
         vn = violation(nlp, xn)
         if log:
             log(f"   ipopt: status {info['status']} f {fn:.10g} viol {vn:.2e} ({info['status_msg'][:60]})")
