@@ -118,7 +118,7 @@ pub fn describe(a: &BodyAngles) -> String {
         parts.push(if a.neck_flexion_deg > 0.0 {
             format!("head bowed {:.0}°", a.neck_flexion_deg)
         } else {
-            format!("head tilted back {:.0}°", -a.neck_flexion_deg)
+            format!("neck extended {:.0}°", -a.neck_flexion_deg)
         });
     }
     sideways(&mut parts, "head turned", a.neck_twist_deg, 10.0);

@@ -959,6 +959,7 @@ impl Task {
             ));
         }
         let mut phases = Vec::with_capacity(f.phases.len());
+        let has_head = Head::of(&model).is_some();
         for (i, ph) in f.phases.iter().enumerate() {
             if let Some(j) = f.phases[..i].iter().position(|p| p.name == ph.name) {
                 return Err(field(
@@ -969,14 +970,7 @@ impl Task {
                     ),
                 ));
             }
-            phases.push(check_phase(
-                i,
-                ph,
-                &hand_links,
-                &gravity,
-                Head::of(&model).is_some(),
-                &field,
-            )?);
+            phases.push(check_phase(i, ph, &hand_links, &gravity, has_head, &field)?);
         }
         if f.cycles == 0 {
             return Err(field("cycles", "must be at least 1".into()));

@@ -7,9 +7,9 @@
 //! sagittal plane (forward positive) and out of it (side bending), the thorax's twist against the
 //! pelvis, each upper arm's angle against straight down, the head's long axis against the
 //! vertical, the neck's flexion and side bending (head against trunk; both in the head's own
-//! planes, [`crate::body::head`]) and its twist joint, and
-//! each wrist's flexion and deviation joints. The wrists' rows keep near-ties apart: without them a bent and a straight wrist
-//! can reach a target for about the same fatigue, and which one a plan takes depended on the
+//! planes, [`crate::body::head`]) and its twist joint, and each wrist's flexion and deviation
+//! joints. The wrists' rows keep near-ties apart: without them a bent and a straight wrist can
+//! reach a target for about the same fatigue, and which one a plan takes depended on the
 //! search's path (shelf's 'place high board', 1 % apart). The limits ([`ZoneLimits::for_hold`]):
 //!
 //! | zone | limit | source |
