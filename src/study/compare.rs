@@ -556,7 +556,11 @@ fn what_changes(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
     } else {
         line
     });
-    if o.worst_group == best.worst_group && o.worst_u_min > 0.0 {
+    // a group's fatigue compares only over the same simulated time (a plan that exhausts a group
+    // stops there)
+    let same_time = (o.simulated_duration_s - best.simulated_duration_s).abs()
+        <= 1e-9 * o.simulated_duration_s.max(1.0);
+    if o.worst_group == best.worst_group && o.worst_u_min > 0.0 && same_time {
         parts.push(format!(
             "the {}' fatigue {}",
             best.worst_group,

@@ -1090,9 +1090,11 @@ fn sweep_shards_merge_into_the_unsharded_sweep() {
 }
 
 /// The shipped pallet pair: lifting 8 kg boxes from a pallet at 0.30 m, or from the same pallet
-/// on a lift table. Both are sustainable, both load L5/S1 above NIOSH's action limit, and the lift
-/// table lowers that compression (a shallower stoop): an ergonomist picks the lift table, and so
-/// must `compare`, whatever the two plans' near-equal fatigue says.
+/// on a lift table. The lift table lowers the lifting index and the L5/S1 compression (a
+/// shallower stoop): an ergonomist picks the lift table, and so must `compare`. (With the trunk
+/// extensors as weak in a stoop as Chaffin et al. tabulate, the floor pallet's plan exhausts a
+/// group within a minute; a group's fatigue is then not compared, the two plans' simulated times
+/// differing.)
 #[test]
 fn compare_ranks_the_raised_pallet_first() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -1122,4 +1124,14 @@ fn compare_ranks_the_raised_pallet_first() {
     );
     assert_eq!(raised["rank"], 1, "{v:#}");
     assert_eq!(floor["rank"], 2);
+    let duration = |l: &Value| num(&l["simulated_duration_s"]).unwrap();
+    if duration(floor) != duration(raised) {
+        for f in v["findings"].as_array().unwrap() {
+            let f = f.as_str().unwrap();
+            assert!(
+                !f.contains("' fatigue "),
+                "a group's fatigue over unequal times: {f}"
+            );
+        }
+    }
 }

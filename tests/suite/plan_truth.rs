@@ -271,19 +271,20 @@ struct KnownMiss {
 }
 
 const KNOWN_MISSES: &[KnownMiss] = &[
-    // 'pick from cart' has two postures looking at the cart (trunk flexed 22° and twisted 9°
-    // left, or flexed 11° and bent 10° right), 3.2 % apart; the QP's precision picks one
-    KnownMiss {
-        task: "shelf_lowered",
-        objective: 0.04,
-        total: 0.04,
-    },
     // the zones' excesses (arm, head tilted back to look at the drill) dominate the objective;
-    // near-ties of 0.04° of excess against 0.8 % of fatigue
+    // near-ties of 0.04° of excess against 0.8 % of fatigue; a target 1 mm forward: 1.1 %
     KnownMiss {
         task: "overhead_drilling",
         objective: 5e-3,
-        total: 0.01,
+        total: 0.015,
+    },
+    // 'lift from pallet' holds the right plantarflexors at 81 %MVC, where U is steep: the right
+    // arm raised 62° or 68° (the QP's precision or a target 1 mm away picks one) is 1.7 % of the
+    // total (measured 2026-12-05, with the trunk extensors weakening in a stoop)
+    KnownMiss {
+        task: "pallet_raised",
+        objective: 0.015,
+        total: 0.025,
     },
 ];
 

@@ -115,7 +115,7 @@ def check_pchip():
     worst = 0.0
     n = 0
     for h in t.body.half:
-        for qi, pc in h["curves"]:
+        for _qis, pc in h["curves"]:
             ref = PchipInterpolator(pc.x, pc.y)
             dref = ref.derivative()
             for xq in np.linspace(pc.x[0] + 1e-9, pc.x[-1] - 1e-9, 301):
@@ -127,6 +127,81 @@ def check_pchip():
             v1, d1 = pc(pc.x[-1] + 0.3)
             worst = max(worst, abs(v0 - pc.y[0]), abs(v1 - pc.y[-1]), abs(d0), abs(d1))
     rec(f"PCHIP vs scipy PchipInterpolator ({n} points)", worst, worst < 1e-12)
+
+
+def check_plus_curves():
+    """Curves keyed on a sum of joint angles (`plus:`, statement §2 "Strength"): the MVC gradient
+    vs central differences at random postures, the value depending on the sum only, and the
+    trunk extensors of a P50 man against Chaffin et al. Table 4.5 (288 / 232 / 171 N m at a trunk
+    inclination of 20 / 40 / 60 deg)."""
+    import math
+    import yaml
+    here = os.path.dirname(os.path.abspath(__file__))
+    spath = os.path.join(M.INPUTS, "worker.strength.yaml")
+    with open(spath) as fh:
+        st = yaml.safe_load(fh)
+    plus_curves = [(e["joint"], e["direction"], c) for e in st["half_joints"]
+                   for c in (e.get("posture") or []) if c.get("plus")]
+    body = M.Body(os.path.join(M.INPUTS, "worker.urdf"), spath, "male", 50, M.G_DEFAULT)
+    hi = body.half_names.index("lumbar_flexion-")
+    qidx = body.qidx
+    iL, iP = qidx["lumbar_flexion"], qidx["pelvis_tilt"]
+    ok_struct = (any(j == "lumbar_flexion" and d == "-" and c["joint"] == "lumbar_flexion"
+                     and list(c["plus"]) == ["pelvis_tilt"] for j, d, c in plus_curves)
+                 and sorted(body.half[hi]["curves"][0][0].tolist()) == sorted([iL, iP]))
+    # gradient vs central differences, random postures inside the limits (trunk inclination
+    # spread over the whole table), both sexes' bodies are the same code path
+    rng = np.random.default_rng(11)
+    lo = np.where(np.isfinite(body.lower), body.lower, -1.0)
+    up = np.where(np.isfinite(body.upper), body.upper, 1.0)
+    worst = 0.0
+    worst_sum = 0.0
+    h = 1e-7
+    for _ in range(40):
+        q = lo + (up - lo) * (0.05 + 0.9 * rng.random(body.nq))
+        q[iL] = math.radians(rng.uniform(-22, 75))
+        q[iP] = math.radians(rng.uniform(-25, 40))
+        mv, G = body.mvc(q, with_grad=True)
+        for i in range(body.nq):
+            qp = q.copy()
+            qp[i] += h
+            qm = q.copy()
+            qm[i] -= h
+            fd = (body.mvc(qp)[0] - body.mvc(qm)[0]) / (2 * h)
+            worst = max(worst, float(np.max(np.abs(fd - G[:, i]) / (np.abs(mv) + 1.0))))
+        # the extensors' value depends on lumbar + pelvis only through the sum
+        q2 = q.copy()
+        s_ = q[iL] + q[iP]
+        q2[iL], q2[iP] = 0.3 * s_, 0.7 * s_
+        worst_sum = max(worst_sum, abs(body.mvc(q2)[0][hi] - mv[hi]))
+    gL, gP = G[hi, iL], G[hi, iP]
+    rec("plus-keyed curve (trunk extensors: lumbar_flexion + pelvis_tilt): MVC gradient vs "
+        "central FD, 40 postures (max err / (|MVC| + 1)); value a function of the sum [N m]",
+        dict(grad=worst, sum_only=worst_sum, structure=ok_struct,
+             last_dlumbar=float(gL), last_dpelvis=float(gP)),
+        ok_struct and worst < 1e-6 and worst_sum < 1e-9 and gL == gP)
+    # lumbar 10 deg + pelvis 10 deg == lumbar 20 deg + pelvis 0 deg; P50 man vs Chaffin Table 4.5
+    q0 = np.zeros(body.nq)
+    qa = q0.copy()
+    qa[iL], qa[iP] = math.radians(10), math.radians(10)
+    qb = q0.copy()
+    qb[iL] = math.radians(20)
+    va, vb = body.mvc(qa)[0][hi], body.mvc(qb)[0][hi]
+    chaffin = {}
+    worst_c = 0.0
+    for deg, ref in ((20, 288.0), (40, 232.0), (60, 171.0)):
+        for split in (0.0, 0.5, 1.0):       # all on the lumbar, half/half, all on the pelvis
+            q = q0.copy()
+            q[iL], q[iP] = math.radians(deg * (1 - split)), math.radians(deg * split)
+            v = float(body.mvc(q)[0][hi])
+            chaffin[f"{deg} deg (pelvis share {split})"] = v
+            worst_c = max(worst_c, abs(v - ref))
+    rec("plus-keyed curve: MVC(lumbar 10, pelvis 10 deg) = MVC(lumbar 20, pelvis 0 deg); P50 man's "
+        "trunk extensors at trunk inclination 20/40/60 deg = 288/232/171 N m (Chaffin et al. "
+        "Table 4.5) within 0.1",
+        dict(mvc_10_10=float(va), mvc_20_0=float(vb), diff=float(abs(va - vb)), chaffin=chaffin,
+             max_abs_err=worst_c),
+        abs(va - vb) < 1e-12 and worst_c < 0.1)
 
 
 def independent_torques(body, q, FR, FL, st):
@@ -881,6 +956,7 @@ if __name__ == "__main__":
     check_fatigue()
     check_fatigue_grad()
     check_pchip()
+    check_plus_curves()
     check_statics()
     check_internal_wrench()
     check_nlp_jacobians()

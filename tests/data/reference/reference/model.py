@@ -155,10 +155,16 @@ class Body:
                 base = max(ms["mean_nm"] + z * ms["sd_nm"], 0.05 * ms["mean_nm"])
                 curves = []
                 for c in e.get("posture", []) or []:
-                    cj = c["joint"]
-                    full = cj if cj in self.qidx else (f"{side}_{cj}" if side else cj)
-                    assert full in self.qidx, full
-                    curves.append((self.qidx[full], Pchip(np.radians(c["deg"]), c["factor"])))
+                    # a curve is keyed on the angle of `joint`, or (since 2026-12-05) on the SUM
+                    # of the angles of `joint` and of every joint in `plus` (statement §2
+                    # "Strength"); each name takes the muscle group's side if it has no prefix
+                    qis = []
+                    for cj in [c["joint"]] + list(c.get("plus", []) or []):
+                        full = cj if cj in self.qidx else (f"{side}_{cj}" if side else cj)
+                        assert full in self.qidx, full
+                        qis.append(self.qidx[full])
+                    curves.append((np.array(qis, dtype=np.int64),
+                                   Pchip(np.radians(c["deg"]), c["factor"])))
                 entries[(jn, e["direction"])] = dict(base=base, region=e["region"], curves=curves,
                                                      mean=ms["mean_nm"])
         self.half_names = []
@@ -180,16 +186,17 @@ class Body:
         for i, h in enumerate(self.half):
             vals = []
             ders = []
-            for qi, pc in h["curves"]:
-                v, dv = pc(q[qi])
+            for qis, pc in h["curves"]:
+                v, dv = pc(float(np.sum(q[qis])))
                 vals.append(v)
-                ders.append((qi, dv))
+                ders.append((qis, dv))
             prod = h["base"] * (np.prod(vals) if vals else 1.0)
             out[i] = prod
             if with_grad:
-                for k, (qi, dv) in enumerate(ders):
+                for k, (qis, dv) in enumerate(ders):
                     others = np.prod([vals[j] for j in range(len(vals)) if j != k]) if len(vals) > 1 else 1.0
-                    grad[i, qi] += h["base"] * others * dv
+                    for qi in qis:          # d(sum)/dq_j = 1 for every joint of the sum
+                        grad[i, qi] += h["base"] * others * dv
         return out, grad
 
     # --- collision shapes ---------------------------------------------------------------------
