@@ -58,6 +58,7 @@ fn reba_posture() -> RebaPosture {
         neck_twist_deg: 0.0,
         bilateral_weight_bearing: true,
         knee_flexion_deg: 20.0,
+        sitting: false,
         right: side,
         left: RebaSide {
             upper_arm_flexion_deg: 10.0,

@@ -65,6 +65,9 @@ pub struct BodyAngles {
     pub right_knee_flexion_deg: f64,
     pub left_knee_flexion_deg: f64,
     pub both_feet_bear_weight: bool,
+    /// The body sits on a seat: set by the caller that knows the supports ([`Self::measure`]
+    /// leaves it false).
+    pub seated: bool,
 }
 
 /// Why angles cannot be measured on a body.
@@ -194,6 +197,7 @@ impl BodyAngles {
             left_knee_flexion_deg: deg(q_rad[lk]),
             both_feet_bear_weight: left_foot_share
                 .is_none_or(|s| (UNILATERAL_SHARE..=1.0 - UNILATERAL_SHARE).contains(&s)),
+            seated: false,
         })
     }
 }

@@ -146,10 +146,12 @@ pub fn describe(a: &BodyAngles) -> String {
         }
     }
     let knees = a.right_knee_flexion_deg.max(a.left_knee_flexion_deg);
-    if knees >= 30.0 {
+    if a.seated {
+        parts.push("sitting".into());
+    } else if knees >= 30.0 {
         parts.push(format!("knees bent {knees:.0}°"));
     }
-    if !a.both_feet_bear_weight {
+    if !a.both_feet_bear_weight && !a.seated {
         parts.push("weight on one foot".into());
     }
     parts.join(", ")
@@ -166,8 +168,11 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
             let q = &plan.summary.phases[p].q_rad;
             pw.statics(task, q, &ph.hand_force_n);
             let share = pw.ground.map(|g| g.left_share);
+            let seated = pw.ground.is_some_and(|g| g.seat.is_some());
             let mut data = pw.data.clone();
-            let angles = BodyAngles::measure(&task.model, &mut data, q, share).ok();
+            let angles = BodyAngles::measure(&task.model, &mut data, q, share)
+                .ok()
+                .map(|a| BodyAngles { seated, ..a });
             let (load_kg, held_s, repeats) = activity(task, p);
             let right_heavier = ph.hand_force_n[0].norm() >= ph.hand_force_n[1].norm();
             let (rula, rula_other) = match &angles {
@@ -206,7 +211,8 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
                         neck_flexion_deg: a.neck_flexion_deg,
                         neck_side_bend_deg: a.neck_side_bend_deg,
                         neck_twist_deg: a.neck_twist_deg,
-                        bilateral_weight_bearing: a.both_feet_bear_weight,
+                        bilateral_weight_bearing: a.both_feet_bear_weight || a.seated,
+                        sitting: a.seated,
                         knee_flexion_deg: a.right_knee_flexion_deg.max(a.left_knee_flexion_deg),
                         right: side(&a.right),
                         left: side(&a.left),

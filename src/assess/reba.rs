@@ -99,8 +99,9 @@
 //!
 //! ## Known gaps of this input format
 //!
-//! * There is no "sitting" flag, so the knee adjustment is always applied
-//!   (the paper exempts sitting). The product's worker stands.
+//! * Sitting (`sitting`) exempts the knee adjustment: the paper marks the
+//!   knee adjustment "not for sitting"; posture-opt reads it for the whole
+//!   adjustment (a seated knee bend is the seat's, not a semi-squat).
 //! * Upper-arm *rotation* (the paper's "abducted **or rotated**") is not an
 //!   input; only abduction is scored.
 //!
@@ -191,6 +192,9 @@ pub struct RebaPosture {
     pub bilateral_weight_bearing: bool,
     /// Knee flexion, the larger of the two knees (0 = straight).
     pub knee_flexion_deg: f64,
+    /// The worker sits: the paper exempts sitting from the knee adjustment (default false).
+    #[serde(default)]
+    pub sitting: bool,
     /// Right arm.
     pub right: RebaSide,
     /// Left arm.
@@ -1025,7 +1029,9 @@ fn legs_step(p: &RebaPosture) -> StepRow {
         )
     };
     let k = p.knee_flexion_deg;
-    let (adj, knee) = if k.is_nan() {
+    let (adj, knee) = if p.sitting {
+        (0, "sitting: no knee adjustment -> +0")
+    } else if k.is_nan() {
         (2, "NaN knee flexion: worst adjustment +2")
     } else if k > 60.0 {
         (2, "knee(s) >60 deg flexion -> +2")
@@ -1040,6 +1046,7 @@ fn legs_step(p: &RebaPosture) -> StepRow {
         name: "Legs",
         measured: vec![
             flag("bilateral weight bearing", p.bilateral_weight_bearing),
+            flag("sitting", p.sitting),
             deg("knee flexion (larger knee)", k),
         ],
         rule: format!("{band}; {knee}; legs score {score}"),

@@ -189,7 +189,7 @@ impl RulaPosture {
             neck_flexion_deg: b.neck_flexion_deg,
             neck_twist_deg: b.neck_twist_deg,
             neck_side_bend_deg: b.neck_side_bend_deg,
-            legs_supported: b.both_feet_bear_weight,
+            legs_supported: b.both_feet_bear_weight || b.seated,
         }
     }
 }

@@ -8,6 +8,7 @@
 pub mod head;
 pub mod model;
 pub mod report;
+pub mod seat;
 pub mod stance;
 pub mod statics;
 pub mod strength;

@@ -41,6 +41,7 @@
 //! the floor projection of the centre of mass of body and load together.
 
 use super::model::{BodyError, BodyModel};
+use super::seat::{Seat, SeatReaction};
 use super::statics::{PointLoad, StaticsData};
 use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector2, Vector3};
 
@@ -93,6 +94,8 @@ pub struct Stance {
     edges_m: Vec<(Vector2<f64>, f64)>,
     /// Where the feet may be placed; `None`: the feet stay at `world_from_foot`.
     pub placement: Option<Placement>,
+    /// The seat the worker sits on (`None`: standing).
+    pub seat: Option<Seat>,
 }
 
 /// Where the planner may place the feet: a standing area on the floor and the ranges of a
@@ -331,7 +334,7 @@ impl SupportHull {
 }
 
 /// Outward unit normals and offsets of a counter-clockwise convex polygon's edges.
-fn polygon_edges(v: &[Vector2<f64>]) -> Vec<(Vector2<f64>, f64)> {
+pub(crate) fn polygon_edges(v: &[Vector2<f64>]) -> Vec<(Vector2<f64>, f64)> {
     (0..v.len())
         .map(|i| {
             let (a, b) = (v[i], v[(i + 1) % v.len()]);
@@ -368,7 +371,19 @@ impl Stance {
             support_polygon_m: v,
             edges_m,
             placement: None,
+            seat: None,
         }
+    }
+
+    /// The same stance sitting on `seat`: the support polygon becomes the convex hull of both
+    /// soles and the seat's outline.
+    pub fn with_seat(mut self, seat: Seat) -> Self {
+        let mut pts = self.support_polygon_m.clone();
+        pts.extend_from_slice(&seat.outline_m);
+        self.support_polygon_m = convex_hull(pts);
+        self.edges_m = polygon_edges(&self.support_polygon_m);
+        self.seat = Some(seat);
+        self
     }
 
     /// The same nominal stance with the feet placed by the planner within `placement`.
@@ -442,6 +457,8 @@ pub struct GroundReaction {
     pub feet: FeetNow,
     /// The support polygon of the feet where they stand.
     pub support: SupportHull,
+    /// The seat's reaction on the pelvis (a seated worker).
+    pub seat: Option<SeatReaction>,
 }
 
 /// The non-ground loads' resultant about the world origin: gravity on the whole body (after
@@ -489,6 +506,41 @@ pub fn ground_reaction(
         (cl2 + cr2) / 2.0
     };
     let t_z = mg.z - (p.x * fg.y - p.y * fg.x);
+    if let Some(seat) = &stance.seat {
+        let margin_m = stance.margin_m(&p);
+        let s3 = data.link_point(model, seat.link, &seat.contact_in_link_m);
+        // each support's point moved along the reaction's direction to the floor
+        let floor = |x: &Vector3<f64>| {
+            if supported {
+                Vector2::new(x.x - fg.x * x.z / fg.z, x.y - fg.y * x.z / fg.z)
+            } else {
+                x.xy()
+            }
+        };
+        let (w, q) = barycentric_clamped(&p, &[floor(&s3), floor(&cl), floor(&cr)]);
+        let d = p - q;
+        let d3 = Vector3::new(d.x, d.y, 0.0);
+        return GroundReaction {
+            force_n: [w[1] * fg, w[2] * fg],
+            cop_m: [
+                Vector3::new(cl.x + d.x, cl.y + d.y, 0.0),
+                Vector3::new(cr.x + d.x, cr.y + d.y, 0.0),
+            ],
+            free_moment_nm: [w[1] * t_z, w[2] * t_z],
+            cop_total_m: p,
+            left_share: w[1],
+            margin_m,
+            supported,
+            feet: feet_now,
+            support,
+            seat: Some(SeatReaction {
+                force_n: w[0] * fg,
+                cop_m: s3 + d3,
+                free_moment_nm: w[0] * t_z,
+                share: w[0],
+            }),
+        };
+    }
     let lr = cl2 - cr2;
     let s = if lr.norm_squared() > 0.0 {
         ((p - cr2).dot(&lr) / lr.norm_squared()).clamp(0.0, 1.0)
@@ -530,7 +582,61 @@ pub fn ground_reaction(
         supported,
         feet: feet_now,
         support,
+        seat: None,
     }
+}
+
+/// The weights (non-negative, summing to 1) of the point of triangle `v` nearest to `p`, and
+/// that point: `p`'s barycentric coordinates when it lies inside.
+fn barycentric_clamped(p: &Vector2<f64>, v: &[Vector2<f64>; 3]) -> ([f64; 3], Vector2<f64>) {
+    let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
+    let det = e1.x * e2.y - e1.y * e2.x;
+    let scale = e1.norm_squared().max(e2.norm_squared()).max(1e-300);
+    if det.abs() > 1e-9 * scale {
+        let r = p - v[0];
+        let b1 = (r.x * e2.y - r.y * e2.x) / det;
+        let b2 = (e1.x * r.y - e1.y * r.x) / det;
+        let b0 = 1.0 - b1 - b2;
+        if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
+            return ([b0, b1, b2], *p);
+        }
+    }
+    // outside (or a flat triangle): the nearest point of the three edges
+    let mut best = (f64::INFINITY, [1.0, 0.0, 0.0], v[0]);
+    for (i, j) in [(0usize, 1usize), (1, 2), (2, 0)] {
+        let e = v[j] - v[i];
+        let t = if e.norm_squared() > 0.0 {
+            ((p - v[i]).dot(&e) / e.norm_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = v[i] + t * e;
+        let dist = (p - q).norm_squared();
+        if dist < best.0 {
+            let mut w = [0.0; 3];
+            w[i] = 1.0 - t;
+            w[j] = t;
+            best = (dist, w, q);
+        }
+    }
+    (best.1, best.2)
+}
+
+/// The seat's reaction as a point load on the pelvis, for the statics (a seated worker).
+pub fn seat_load(
+    model: &BodyModel,
+    data: &StaticsData,
+    stance: &Stance,
+    r: &GroundReaction,
+) -> Option<PointLoad> {
+    let (seat, reaction) = (stance.seat.as_ref()?, r.seat?);
+    let (rot, pos) = data.link_pose(model, seat.link);
+    Some(PointLoad {
+        link: seat.link,
+        point_in_link_m: rot.transpose() * (reaction.cop_m - pos),
+        force_n: reaction.force_n,
+        moment_nm: Vector3::new(0.0, 0.0, reaction.free_moment_nm),
+    })
 }
 
 /// The two foot reactions as point loads on the foot links, for the statics.

@@ -468,8 +468,25 @@ pub fn assessment_zone_deg(joint: &str) -> Option<(f64, f64)> {
     }
 }
 
+/// A joint's neutral angle \[rad\]: 0 (upright standing, arms hanging), except that a seated
+/// worker's hips and knees are neutral bent at right angles — the 90-90-90 sitting posture of
+/// seating guidance (e.g. Collins 2001 for the weight it puts on the feet). ASSUMPTION: the
+/// seat's height is near the popliteal height; a higher or lower seat moves the legs from it.
+pub fn neutral_rad(joint: &str, seated: bool) -> f64 {
+    let j = joint
+        .strip_prefix("r_")
+        .or_else(|| joint.strip_prefix("l_"))
+        .unwrap_or(joint);
+    if seated && matches!(j, "hip_flexion" | "knee_flexion") {
+        std::f64::consts::FRAC_PI_2
+    } else {
+        0.0
+    }
+}
+
 impl Discomfort {
-    /// The actuated joints of `task` with finite ranges; neutral is 0 clamped into the range.
+    /// The actuated joints of `task` with finite ranges; neutral is [`neutral_rad`] clamped into
+    /// the range.
     pub fn new(task: &Task) -> Self {
         let m = &task.model;
         let ranges = (0..m.nq())
@@ -484,7 +501,7 @@ impl Discomfort {
                     Some((
                         j.lower_rad,
                         j.upper_rad,
-                        0.0_f64.clamp(j.lower_rad, j.upper_rad),
+                        neutral_rad(&j.name, task.seated()).clamp(j.lower_rad, j.upper_rad),
                         displacement_weight(&j.name),
                     ))
                 }

@@ -42,7 +42,7 @@ use super::objective::{
 use super::posture::{Other, PostureWork};
 use super::qp::QpError;
 use super::result::*;
-use super::search::{PhaseSolver, PhaseSpec, SearchSettings, SearchStats};
+use super::search::{self, PhaseSolver, PhaseSpec, SearchSettings, SearchStats};
 use super::sqp::{SqpOutcome, SqpSettings};
 use super::stepping::{self, Stepping};
 use super::task::Task;
@@ -212,8 +212,9 @@ impl<'t> Planner<'t> {
             gaze_m: None,
             zones: None,
         };
-        let mut q_rest = vec![0.0; task.model.nq()];
-        let zero = q_rest.clone();
+        // (a seated worker's from the seat, hips and knees bent)
+        let zero = search::seated_start(task).unwrap_or_else(|| vec![0.0; task.model.nq()]);
+        let mut q_rest = zero.clone();
         // the worker rests on the nominal stance, wherever the phases place the feet
         let (rest_solve, _) = if task.stance.as_ref().is_some_and(|s| s.placement.is_some()) {
             let fixed = task.with_fixed_feet();
@@ -1171,6 +1172,7 @@ impl<'t> Planner<'t> {
             centre_of_pressure_m: g.map(|g| [g.cop_total_m.x, g.cop_total_m.y]),
             balance_margin_m: g.map(|g| g.margin_m),
             left_foot_share: g.map(|g| g.left_share),
+            seat_share: g.and_then(|g| g.seat.map(|s| s.share)),
             centre_of_mass_m: [pw.data.com_m.x, pw.data.com_m.y, pw.data.com_m.z],
         }
     }

@@ -6,7 +6,8 @@
 use super::stepping::yaw_rate;
 use super::task::{GAZE_CONE_HALF_ANGLE_DEG, Head, Task};
 use crate::body::stance::{
-    GroundReaction, SOLE_CORNERS, cop_jacobian, foot_loads, ground_reaction, settle_internal_force,
+    GroundReaction, SOLE_CORNERS, cop_jacobian, foot_loads, ground_reaction, seat_load,
+    settle_internal_force,
 };
 use crate::body::statics::{
     apply_loads, forward_kinematics, holding_torque_derivative, mass_moments,
@@ -253,20 +254,22 @@ pub enum Row {
     Gaze,
     Balance,
     Placement,
+    Seat,
 }
 
 /// Most rows [`PostureWork::geometry_rows`] gives for `task`: the gaze row, the support hull's
-/// edges (at most eight), and with placed feet eight sole corners per edge of the standing area
-/// and six stance rows.
+/// edges (at most eight for the feet alone), the seat's edges for a seated body, and with placed
+/// feet eight sole corners per edge of the standing area and six stance rows.
 pub fn geometry_row_count(task: &Task) -> usize {
     let gaze = usize::from(task.head.is_some());
     gaze + match &task.stance {
         None => 0,
         Some(st) => {
-            8 + st
-                .placement
-                .as_ref()
-                .map_or(0, |p| 8 * p.area_edges().count() + 6)
+            8.max(st.edges().count())
+                + st.seat.as_ref().map_or(0, |s| s.edges().count())
+                + st.placement
+                    .as_ref()
+                    .map_or(0, |p| 8 * p.area_edges().count() + 6)
         }
     }
 }
@@ -279,11 +282,11 @@ impl PostureWork {
         let nq = task.model.nq();
         let zero = PointLoad::force_at(0, Vector3::zeros());
         PostureWork {
-            data: StaticsData::new(&task.model, 4),
+            data: StaticsData::new(&task.model, 5),
             hands: [zero; 2],
             n_hands: 0,
             ground: None,
-            loads: Vec::with_capacity(4),
+            loads: Vec::with_capacity(5),
             jac: Matrix3xX::zeros(nq),
             settle_g: Matrix3xX::zeros(nq),
             jac2: Matrix3xX::zeros(nq),
@@ -329,6 +332,7 @@ impl PostureWork {
             );
             let feet = foot_loads(m, &self.data, st, &g);
             self.loads.extend_from_slice(&feet);
+            self.loads.extend(seat_load(m, &self.data, st, &g));
             ground = Some(g);
         }
         apply_loads(m, &mut self.data, &self.loads, &task.gravity_m_s2);
@@ -457,6 +461,8 @@ impl PostureWork {
     /// * when the planner places the feet: every sole corner inside every edge of the standing
     ///   area, then the stance's width (both bounds), stagger (both signs) and relative yaw (both
     ///   bounds, as the arc at the soles' mean half-length, in metres like the other rows);
+    /// * when the body sits: the pelvis point resting on the seat inside every edge of the seat's
+    ///   outline;
     /// * when the body has a head and the phase a gaze point: the gaze point within the eyes'
     ///   cone, `cos θ_max − s·d̂ ≤ 0` (per metre), `s` the line of sight and `d̂` the unit
     ///   direction from the eyes to the point.
@@ -497,6 +503,16 @@ impl PostureWork {
         };
         let p = g.cop_total_m;
         let margin = task.objective.balance_margin_m;
+        if let Some(seat) = &st.seat {
+            let c = self.data.link_point(m, seat.link, &seat.contact_in_link_m);
+            self.data.point_jacobian(m, seat.link, &c, &mut self.jac);
+            for (nrm, d) in seat.edges() {
+                for k in 0..n {
+                    self.row[k] = nrm.x * self.jac[(0, k)] + nrm.y * self.jac[(1, k)];
+                }
+                each(Row::Seat, nrm.dot(&c.xy()) - d, &self.row);
+            }
+        }
         let Some(pl) = &st.placement else {
             // fixed feet: the nominal stance's polygon, which does not move
             for (nrm, d) in st.edges() {
@@ -707,6 +723,29 @@ impl PostureWork {
 
     /// Foot `i`'s positional (into `self.jac`) and angular (into `self.jac2`) Jacobians of its
     /// link frame.
+    /// The seat's height minus that of the pelvis point resting on it (a seated body).
+    pub fn seat_error(&self, task: &Task) -> Option<f64> {
+        let seat = task.stance.as_ref()?.seat.as_ref()?;
+        let c = self
+            .data
+            .link_point(&task.model, seat.link, &seat.contact_in_link_m);
+        Some(seat.height_m - c.z)
+    }
+
+    /// The Jacobian of the pelvis point resting on the seat into `self.jac`; false when the body
+    /// does not sit.
+    pub fn seat_jacobian(&mut self, task: &Task) -> bool {
+        let Some(seat) = task.stance.as_ref().and_then(|st| st.seat.as_ref()) else {
+            return false;
+        };
+        let c = self
+            .data
+            .link_point(&task.model, seat.link, &seat.contact_in_link_m);
+        self.data
+            .point_jacobian(&task.model, seat.link, &c, &mut self.jac);
+        true
+    }
+
     pub fn foot_jacobians(&mut self, task: &Task, i: usize) {
         let st = task.stance.as_ref().expect("a standing body");
         let l = st.feet[i].link;

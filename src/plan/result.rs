@@ -50,6 +50,9 @@ pub struct PostureRecord {
     pub centre_of_pressure_m: Option<[f64; 2]>,
     pub balance_margin_m: Option<f64>,
     pub left_foot_share: Option<f64>,
+    /// Share of the weight on the seat (a seated worker; absent when standing).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seat_share: Option<f64>,
     /// Centre of mass of the body \[m\].
     pub centre_of_mass_m: [f64; 3],
 }

@@ -21,6 +21,7 @@ use super::task::Task;
 use super::zones::ZoneLimits;
 use nalgebra::Vector3;
 use serde::Serialize;
+use std::f64::consts::FRAC_PI_2;
 
 /// Multi-start settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,6 +99,36 @@ fn set(task: &Task, q: &mut [f64], name: &str, v: f64) {
         let j = task.model.q_joint(k);
         q[k] = v.clamp(j.lower_rad, j.upper_rad);
     }
+}
+
+/// Where a seated worker's rest solve starts: the pelvis over the seat's centre with the seat
+/// point on its top, hips and knees bent 90° (the solve brings the feet onto the stance); `None`
+/// for a standing body.
+pub fn seated_start(task: &Task) -> Option<Vec<f64>> {
+    let seat = task.stance.as_ref()?.seat.as_ref()?;
+    let m = &task.model;
+    let mut q = vec![0.0; m.nq()];
+    let mut data = crate::body::StaticsData::new(m, 0);
+    crate::body::forward_kinematics(m, &mut data, &q);
+    let (_, hips) = data.link_pose(m, seat.link);
+    let c = seat
+        .outline_m
+        .iter()
+        .fold(nalgebra::Vector2::zeros(), |a, b| a + b)
+        / seat.outline_m.len() as f64;
+    set(task, &mut q, "pelvis_tx", c.x - hips.x);
+    set(task, &mut q, "pelvis_ty", c.y - hips.y);
+    set(
+        task,
+        &mut q,
+        "pelvis_tz",
+        seat.height_m - seat.contact_in_link_m.z - hips.z,
+    );
+    for side in ["r_", "l_"] {
+        set(task, &mut q, &format!("{side}hip_flexion"), FRAC_PI_2);
+        set(task, &mut q, &format!("{side}knee_flexion"), FRAC_PI_2);
+    }
+    Some(q)
 }
 
 impl<'t> PhaseSolver<'t> {

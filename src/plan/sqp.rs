@@ -247,7 +247,10 @@ impl SqpWork {
     pub fn new(task: &Task, scene: &Scene, settings: SqpSettings) -> Result<Self, QpError> {
         let n = task.model.nq();
         let a = scene.actuated.len();
-        let m = 6 + if task.stance.is_some() { 12 } else { 0 };
+        let m = 6 + task
+            .stance
+            .as_ref()
+            .map_or(0, |st| 12 + usize::from(st.seat.is_some()));
         let e = geometry_row_count(task);
         let sizes = QpSizes {
             n,
@@ -322,7 +325,7 @@ impl SqpWork {
 }
 
 /// Equality residuals (target − actual) at the posture in `pw` (after its statics): 3 per hand
-/// (zero for a free hand), then 6 per foot; into `out`.
+/// (zero for a free hand), then 6 per foot, then the seat's height; into `out`.
 fn equality_residuals(
     task: &Task,
     pw: &PostureWork,
@@ -342,6 +345,9 @@ fn equality_residuals(
             out[6 + 6 * i..9 + 6 * i].copy_from_slice(dp.as_slice());
             out[9 + 6 * i..12 + 6 * i].copy_from_slice(dr.as_slice());
         }
+    }
+    if let Some(dz) = pw.seat_error(task) {
+        out[18] = dz;
     }
 }
 
@@ -636,6 +642,11 @@ fn build_qp(
                     qp.set_a(r.eq + 6 + 6 * i + d, c.dq + k, pw.jac[(d, k)]);
                     qp.set_a(r.eq + 9 + 6 * i + d, c.dq + k, pw.jac2[(d, k)]);
                 }
+            }
+        }
+        if pw.seat_jacobian(task) {
+            for k in 0..n {
+                qp.set_a(r.eq + 18, c.dq + k, pw.jac[(2, k)]);
             }
         }
     }
@@ -1098,6 +1109,10 @@ pub fn restore(
                     rows.push((dp[d], (0..n).map(|k| pw.jac[(d, k)]).collect()));
                     rows.push((dr[d], (0..n).map(|k| pw.jac2[(d, k)]).collect()));
                 }
+            }
+            if let Some(dz) = pw.seat_error(task) {
+                pw.seat_jacobian(task);
+                rows.push((dz, (0..n).map(|k| pw.jac[(2, k)]).collect()));
             }
         }
         // violated clearances: d(q) = d_min

@@ -6,6 +6,7 @@
 //! JSON Schema that `posture-opt schema` prints). Units: metres, kilograms, newtons, seconds,
 //! radians (degrees where a field says `_deg`); world frame x forward, y left, z up, floor at z = 0.
 
+use crate::body::seat::{ISCHIA_BELOW_HIPS_PER_STATURE, Seat};
 use crate::body::stance::{Foot, Placement, Stance};
 use crate::body::worker::{LEFT_FOOT_LINK, RIGHT_FOOT_LINK, worker_geometry};
 use crate::body::{
@@ -71,6 +72,9 @@ pub struct TaskFile {
     /// Where the feet stand (bodies with a floating pelvis).
     #[serde(default)]
     pub stance: Option<StanceFile>,
+    /// A seat: given, the worker sits on it in every phase and at rest (the generated worker).
+    #[serde(default)]
+    pub seat: Option<SeatFile>,
     /// Obstacles of the workstation.
     #[serde(default)]
     pub workstation: WorkstationFile,
@@ -154,6 +158,22 @@ pub struct StanceFile {
     /// absent, the feet stay on the stance above in every phase.
     #[serde(default)]
     pub area_m: Option<Vec<[f64; 2]>>,
+}
+
+/// A seat the worker sits on, feet on the floor where the stance puts them.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SeatFile {
+    /// Height of the seat's top above the floor \[m\], 0.25..1.0.
+    pub height_m: f64,
+    /// Centre of the seat's top in plan (x, y) \[m\]: behind the feet, for a worker facing +x.
+    pub position_m: [f64; 2],
+    /// Depth (front to back) and width of the top \[m\], each 0.2..1.0; default 0.40 × 0.45.
+    #[serde(default)]
+    pub size_m: Option<[f64; 2]>,
+    /// The direction the seat faces \[deg\], about the vertical from +x (−180..180); default 0.
+    #[serde(default)]
+    pub yaw_deg: f64,
 }
 
 /// The workstation.
@@ -885,6 +905,25 @@ impl Task {
             }
         };
 
+        let stance = match (&f.seat, stance) {
+            (None, stance) => stance,
+            (Some(_), None) => {
+                return Err(field(
+                    "seat",
+                    "this robot has a fixed base: it cannot sit".into(),
+                ));
+            }
+            (Some(sf), Some(st)) => {
+                Some(st.with_seat(seat(sf, &model, &f.worker, generated, &field)?))
+            }
+        };
+        if f.seat.is_some() && f.stance.as_ref().is_some_and(|s| s.area_m.is_some()) {
+            return Err(field(
+                "stance.area_m",
+                "a seated worker's feet stay where the stance puts them: give a standing area or a seat, not both".into(),
+            ));
+        }
+
         let file_set = match &f.fatigue.parameters_file {
             Some(name) => {
                 if f.fatigue.parameters.is_some() {
@@ -911,12 +950,20 @@ impl Task {
         // stature): an obstacle holding that point encloses the worker, passes through him, or
         // is a plane whose solid side is his. The planner would search for minutes for a posture
         // out of it; it is refused at once.
-        let hips = stance.as_ref().map(|_| {
-            Vector3::new(
+        let hips = stance.as_ref().map(|st| match &st.seat {
+            Some(seat) => {
+                let c = seat
+                    .outline_m
+                    .iter()
+                    .fold(nalgebra::Vector2::zeros(), |a, b| a + b)
+                    / 4.0;
+                Vector3::new(c.x, c.y, seat.height_m - seat.contact_in_link_m.z)
+            }
+            None => Vector3::new(
                 f.stance.as_ref().map_or(0.0, |s| s.forward_m),
                 0.0,
                 0.53 * f.worker.stature_m,
-            )
+            ),
         });
         let workstation = Workstation::new(f.workstation.obstacles)
             .map_err(|e| field("workstation.obstacles", e.to_string()))?;
@@ -1610,7 +1657,71 @@ fn placement(
     Ok(p)
 }
 
+/// The seat of a task, checked: the generated worker's pelvis rests on it.
+fn seat(
+    sf: &SeatFile,
+    model: &BodyModel,
+    worker: &Worker,
+    generated: bool,
+    field: &dyn Fn(&str, String) -> TaskError,
+) -> Result<Seat, TaskError> {
+    let pelvis = model.frame_link("pelvis").ok().filter(|_| generated).ok_or_else(|| {
+        field(
+            "seat",
+            "only the generated worker sits (its pelvis rests on the seat): leave robot out, or use a robot file posture-opt generated".into(),
+        )
+    })?;
+    if !(sf.height_m.is_finite() && (0.25..=1.0).contains(&sf.height_m)) {
+        return Err(field(
+            "seat.height_m",
+            format!("must be within 0.25..1.0 m, got {}", sf.height_m),
+        ));
+    }
+    for (i, x) in sf.position_m.iter().enumerate() {
+        if !(x.is_finite() && x.abs() <= 2.0) {
+            return Err(field(
+                &format!("seat.position_m[{i}]"),
+                format!("must be within ±2 m, got {x}"),
+            ));
+        }
+    }
+    let [depth, width] = sf.size_m.unwrap_or([0.40, 0.45]);
+    for (name, x) in [("seat.size_m[0]", depth), ("seat.size_m[1]", width)] {
+        if !(x.is_finite() && (0.2..=1.0).contains(&x)) {
+            return Err(field(name, format!("must be within 0.2..1.0 m, got {x}")));
+        }
+    }
+    if !(sf.yaw_deg.is_finite() && sf.yaw_deg.abs() <= 180.0) {
+        return Err(field(
+            "seat.yaw_deg",
+            format!("must be within −180..180°, got {}", sf.yaw_deg),
+        ));
+    }
+    Ok(Seat::new(
+        pelvis,
+        Vector3::new(0.0, 0.0, -ISCHIA_BELOW_HIPS_PER_STATURE * worker.stature_m),
+        sf.height_m,
+        nalgebra::Vector2::new(sf.position_m[0], sf.position_m[1]),
+        [depth, width],
+        sf.yaw_deg.to_radians(),
+    ))
+}
+
 impl Task {
+    /// The worker sits on a seat.
+    pub fn seated(&self) -> bool {
+        self.stance.as_ref().is_some_and(|st| st.seat.is_some())
+    }
+
+    /// What carries the worker, for sentences: "the seat and the feet" or "the feet".
+    pub fn supports(&self) -> &'static str {
+        if self.seated() {
+            "the seat and the feet"
+        } else {
+            "the feet"
+        }
+    }
+
     /// The same task with the feet held on the nominal stance in every phase.
     pub fn with_fixed_feet(&self) -> Task {
         let mut t = self.clone();

@@ -27,6 +27,7 @@ mod plan_truth;
 mod posture_zones;
 mod reba;
 mod rula;
+mod seated;
 mod shift_verdict;
 mod stance_placement;
 mod statistics;

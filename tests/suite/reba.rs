@@ -47,6 +47,7 @@ mod common {
             neck_twist_deg: 0.0,
             bilateral_weight_bearing: true,
             knee_flexion_deg: 0.0,
+            sitting: false,
             right: neutral_side(),
             left: neutral_side(),
         }
@@ -1348,6 +1349,7 @@ mod no_panic {
                 neck_twist_deg: self.finite(),
                 bilateral_weight_bearing: self.bool(),
                 knee_flexion_deg: self.finite(),
+                sitting: false,
                 right: self.side(),
                 left: self.side(),
             }

@@ -703,6 +703,7 @@ fn body(right: ArmAngles, left: ArmAngles) -> BodyAngles {
         right_knee_flexion_deg: 0.0,
         left_knee_flexion_deg: 0.0,
         both_feet_bear_weight: true,
+        seated: false,
     }
 }
 

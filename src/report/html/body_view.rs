@@ -305,7 +305,11 @@ pub fn scene(task: &Task, q_rad: &[f64], phase: Option<usize>) -> Result<Scene, 
     let support_m = task
         .stance
         .as_ref()
-        .map(|st| FeetNow::at(m, &data, &st.feet).support().polygon_m())
+        .map(|st| match &st.seat {
+            // a seated worker's support is the seat's outline with the (fixed) feet
+            Some(_) => st.support_polygon_m.clone(),
+            None => FeetNow::at(m, &data, &st.feet).support().polygon_m(),
+        })
         .unwrap_or_default();
     Ok(Scene {
         items,
@@ -459,6 +463,15 @@ fn outlines(task: &Task, view: View) -> Vec<(String, Outline)> {
             ob.spec.name.clone(),
             Outline::Solid(hull(pts.iter().map(|p| view.project(p)).collect())),
         ));
+    }
+    // the seat: a block from the floor to its top
+    if let Some(seat) = task.stance.as_ref().and_then(|st| st.seat.as_ref()) {
+        let pts: Vec<(f64, f64)> = seat
+            .outline_m
+            .iter()
+            .flat_map(|c| [0.0, seat.height_m].map(|z| view.project(&Vector3::new(c.x, c.y, z))))
+            .collect();
+        out.push(("seat".to_string(), Outline::Solid(hull(pts))));
     }
     out
 }
@@ -700,7 +713,11 @@ pub fn view_svg(task: &Task, scene: &Scene, frame: &Frame, view: View, label: &s
         g.polygon(
             &on_floor(&scene.support_m),
             "fill=\"#e8f3e8\" stroke=\"#2e7d32\" stroke-width=\"1\" stroke-dasharray=\"4 3\"",
-            Some("support polygon of the feet"),
+            Some(if st.seat.is_some() {
+                "support polygon of the seat and the feet"
+            } else {
+                "support polygon of the feet"
+            }),
         );
     }
     // obstacles
@@ -1048,10 +1065,12 @@ pub fn views_html(task: &Task, scene: &Scene, frame: &Frame, label: &str) -> Str
         o,
         "</div><figcaption>{}: <span class=\"key right\">right side</span> <span class=\"key left\">left side</span> <span class=\"key obj\">held object</span> <span class=\"key obst\">obstacle</span> <span class=\"tgt\">×</span> hand target, ● hand{}; heights in metres above the floor.</figcaption></figure>",
         esc(label),
-        if frame.views.contains(&View::Top) {
-            "; top view: ⊕ centre of mass over the feet's support polygon (dashed)"
-        } else {
+        if !frame.views.contains(&View::Top) {
             ""
+        } else if task.seated() {
+            "; top view: ⊕ centre of mass over the support polygon of the seat and the feet (dashed)"
+        } else {
+            "; top view: ⊕ centre of mass over the feet's support polygon (dashed)"
         }
     );
     o

@@ -424,17 +424,19 @@ pub fn findings(
             Finding::new(
                 Level::Bad,
                 format!(
-                    "Off balance in {}: the centre of pressure is {} outside the feet.",
+                    "Off balance in {}: the centre of pressure is {} outside {}.",
                     q(&p.phase),
-                    mm(-m)
+                    mm(-m),
+                    task.supports()
                 ),
             )
         } else {
             Finding::new(
                 if *m < task.objective.balance_margin_m - 5e-4 { Level::Warn } else { Level::Ok },
                 format!(
-                    "Balance is kept in every phase: the centre of pressure stays at least {} inside the feet (least in {}).",
+                    "Balance is kept in every phase: the centre of pressure stays at least {} inside {} (least in {}).",
                     mm(*m),
+                    task.supports(),
                     q(&p.phase)
                 ),
             )

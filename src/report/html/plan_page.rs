@@ -441,20 +441,24 @@ fn phase_card(
         ));
     }
     if let Some(m) = sm.balance_margin_m {
-        let share = plan
-            .postures
-            .iter()
-            .rev()
-            .find(|r| r.phase == ph.name)
-            .and_then(|r| r.left_foot_share);
+        let record = plan.postures.iter().rev().find(|r| r.phase == ph.name);
+        let share = record.and_then(|r| r.left_foot_share);
+        let seat = record.and_then(|r| r.seat_share);
         rows.push((
             "balance",
             format!(
-                "centre of pressure {} {} the feet{}",
+                "centre of pressure {} {} {}{}{}",
                 mm(m.abs()),
                 if m >= 0.0 { "inside" } else { "outside" },
+                task.supports(),
+                seat.map(|s| format!("; {} of the weight on the seat", pct(s)))
+                    .unwrap_or_default(),
                 share
-                    .map(|s| format!("; {} of the weight on the left foot", pct(s)))
+                    .map(|s| format!(
+                        "; {} {}on the left foot",
+                        pct(s),
+                        if seat.is_some() { "" } else { "of the weight " }
+                    ))
                     .unwrap_or_default()
             ),
         ));

@@ -1,0 +1,233 @@
+//! Seated work: the worker sits on a seat the task declares (issue 33.2).
+//!
+//! * Statics: the seat, the two feet and gravity balance exactly (the floating pelvis's six
+//!   torques vanish, the reactions sum to the weight), and in upright sitting with hips and knees
+//!   at 90° the feet carry the share of the weight measured on people: 19.5–30 % (Mbada et al.
+//!   2016, 210 adults: 12.60 / 15.92 / 19.64 kg on the feet against 51.86 / 49.52 / 44.87 kg on
+//!   the seat in sacro-ischial, ischio-femoral and ischial sitting; Collins 2001: 19 % through the
+//!   feet at 90-90-90) — numbers from those studies, not from this code.
+//! * The seat's rows have the gradients of their values (central differences).
+//! * The task file's seat is checked at the boundary: ranges, no standing area with a seat, and
+//!   only a body with the generated worker's pelvis sits.
+//! * Planned: tasks/bench_seated.yaml (shortened to one cycle) keeps the pelvis on the seat in
+//!   every phase, scores RULA's legs as supported and exempts REBA's knee adjustment, and says
+//!   "sitting".
+
+use nalgebra::Vector3;
+use posture_opt::plan::posture::{PostureWork, Row};
+use posture_opt::plan::search::seated_start;
+use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn seated_text() -> String {
+    std::fs::read_to_string(root().join("tasks/bench_seated.yaml")).unwrap()
+}
+
+fn task_of(text: &str) -> Result<Task, String> {
+    Task::from_yaml_str(text, &root().join("tasks/bench_seated.yaml")).map_err(|e| e.to_string())
+}
+
+fn seated() -> Task {
+    task_of(&seated_text()).unwrap()
+}
+
+#[test]
+fn seat_feet_and_gravity_balance_and_the_feet_carry_the_measured_share() {
+    let task = seated();
+    let q = seated_start(&task).expect("a seated task");
+    let mut pw = PostureWork::new(&task);
+    pw.statics(&task, &q, &[Vector3::zeros(); 2]);
+    let g = pw.ground.expect("a floating body stands or sits");
+    let seat = g.seat.expect("the seat carries part of the weight");
+    // the six unactuated pelvis joints hold nothing: the supports balance the body
+    for k in &task.unactuated {
+        let tau = pw.data.tau_nm[*k];
+        assert!(
+            tau.abs() < 1e-8,
+            "{}: {tau} N·m",
+            task.model.q_joint(*k).name
+        );
+    }
+    let weight = task.model.total_mass_kg() * 9.81;
+    let total = seat.force_n + g.force_n[0] + g.force_n[1];
+    assert!(
+        (total - Vector3::new(0.0, 0.0, weight)).norm() < 1e-9 * weight,
+        "{total}"
+    );
+    let feet = (g.force_n[0].z + g.force_n[1].z) / weight;
+    assert!(
+        (0.195..=0.30).contains(&feet),
+        "feet carry {:.1} % of the weight; people sitting upright put 19.5–30 % on them",
+        100.0 * feet
+    );
+    assert!((seat.share + feet - 1.0).abs() < 1e-12);
+    // the two feet share symmetrically in a symmetric posture
+    assert!((g.force_n[0].z - g.force_n[1].z).abs() < 1e-6 * weight);
+}
+
+#[test]
+fn a_seat_in_front_of_the_centre_of_pressure_shifts_nothing_to_the_feet_it_cannot_carry() {
+    // leaning back over the seat's back edge: the reaction's centre leaves the triangle of seat
+    // point and soles; the weights stay in 0..1 and still sum to 1
+    let task = seated();
+    let mut q = seated_start(&task).unwrap();
+    let k = task.model.q_index("lumbar_flexion").unwrap();
+    q[k] = task.model.q_joint(k).lower_rad;
+    let mut pw = PostureWork::new(&task);
+    pw.statics(&task, &q, &[Vector3::zeros(); 2]);
+    let g = pw.ground.unwrap();
+    let s = g.seat.unwrap();
+    let w = task.model.total_mass_kg() * 9.81;
+    for share in [s.share, g.force_n[0].z / w, g.force_n[1].z / w] {
+        assert!((-1e-12..=1.0 + 1e-12).contains(&share), "{share}");
+    }
+    let total = s.force_n + g.force_n[0] + g.force_n[1];
+    assert!((total.z - w).abs() < 1e-9 * w);
+}
+
+fn seat_rows(task: &Task, pw: &mut PostureWork, q: &[f64]) -> Vec<(f64, Vec<f64>)> {
+    pw.statics(task, q, &[Vector3::zeros(); 2]);
+    let mut out = Vec::new();
+    pw.geometry_rows(task, None, |kind, g, grad| {
+        if kind == Row::Seat {
+            out.push((g, grad.to_vec()));
+        }
+    });
+    // the seat's height row
+    let dz = pw.seat_error(task).unwrap();
+    assert!(pw.seat_jacobian(task));
+    out.push((dz, (0..q.len()).map(|k| -pw.jac[(2, k)]).collect()));
+    out
+}
+
+#[test]
+fn the_seat_rows_have_the_gradients_of_their_values() {
+    let task = seated();
+    let mut pw = PostureWork::new(&task);
+    let q0 = seated_start(&task).unwrap();
+    let h = 1e-6;
+    let mut checked = 0;
+    for seed in 0..4u32 {
+        let q: Vec<f64> = q0
+            .iter()
+            .enumerate()
+            .map(|(k, x)| x + 0.05 * ((k as f64 * 1.7 + seed as f64 * 0.9).sin()))
+            .collect();
+        let base = seat_rows(&task, &mut pw, &q);
+        assert_eq!(base.len(), 5, "four outline edges and the height");
+        for k in 0..q.len() {
+            let (mut qp, mut qm) = (q.clone(), q.clone());
+            qp[k] += h;
+            qm[k] -= h;
+            let (rp, rm) = (
+                seat_rows(&task, &mut pw, &qp),
+                seat_rows(&task, &mut pw, &qm),
+            );
+            for (i, (_, grad)) in base.iter().enumerate() {
+                let fd = (rp[i].0 - rm[i].0) / (2.0 * h);
+                assert!(
+                    (fd - grad[k]).abs() <= 1e-6 * (1.0 + fd.abs()),
+                    "row {i}, {}: finite difference {fd}, gradient {}",
+                    task.model.q_joint(k).name,
+                    grad[k]
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 500);
+}
+
+#[test]
+fn the_task_files_seat_is_checked_naming_the_field() {
+    let text = seated_text();
+    let with = |from: &str, to: &str| {
+        assert!(text.contains(from), "{from}");
+        task_of(&text.replace(from, to)).unwrap_err()
+    };
+    let e = with("height_m: 0.42", "height_m: 1.6");
+    assert!(
+        e.contains("seat.height_m") && e.contains("0.25..1.0"),
+        "{e}"
+    );
+    let e = with("position_m: [-0.35, 0.00]", "position_m: [-0.35, .nan]");
+    assert!(e.contains("seat.position_m[1]"), "{e}");
+    let e = with(
+        "position_m: [-0.35, 0.00]}",
+        "position_m: [-0.35, 0.00], size_m: [0.05, 0.45]}",
+    );
+    assert!(e.contains("seat.size_m[0]"), "{e}");
+    let e = with(
+        "stance: {width_m: 0.20, forward_m: 0.05}",
+        "stance: {width_m: 0.20, forward_m: 0.05, area_m: [[-1, -1], [1, -1], [1, 1], [-1, 1]]}",
+    );
+    assert!(e.contains("stance.area_m") && e.contains("seat"), "{e}");
+    let e = with("seat: {", "seat: {yaw_deg: 400, ");
+    assert!(e.contains("seat.yaw_deg"), "{e}");
+}
+
+fn planned() -> &'static (Task, Plan) {
+    static P: OnceLock<(Task, Plan)> = OnceLock::new();
+    P.get_or_init(|| {
+        let text = seated_text().replace("cycles: 240", "cycles: 1");
+        let t = task_of(&text).unwrap();
+        let p = plan_task_with(
+            &t,
+            PlanOptions {
+                adapt: false,
+                baselines: false,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap();
+        (t, p)
+    })
+}
+
+#[test]
+fn the_planned_seated_worker_sits_on_the_seat_in_every_phase() {
+    let (t, p) = planned();
+    let seat = t.stance.as_ref().unwrap().seat.as_ref().unwrap();
+    let mut pw = PostureWork::new(t);
+    for ph in &p.summary.phases {
+        pw.statics(t, &ph.q_rad, &[Vector3::zeros(); 2]);
+        let c = pw
+            .data
+            .link_point(&t.model, seat.link, &seat.contact_in_link_m);
+        assert!((c.z - seat.height_m).abs() < 1e-3, "{}: {c}", ph.phase);
+        assert!(
+            seat.margin_m(&c.xy()) > -1e-3,
+            "{}: {c} off the seat",
+            ph.phase
+        );
+    }
+    for r in &p.postures {
+        let s = r
+            .seat_share
+            .expect("a seated posture reports the seat's share");
+        assert!((0.4..1.0).contains(&s), "{}: seat carries {s}", r.phase);
+    }
+}
+
+#[test]
+fn seated_postures_score_supported_legs_and_no_knee_adjustment() {
+    let (t, p) = planned();
+    let phases = posture_opt::assess::phase::assess_phases(t, p);
+    for a in &phases {
+        let angles = a.angles.as_ref().expect("the generated worker is measured");
+        assert!(angles.seated, "{}", a.phase);
+        let rula = a.rula.as_ref().unwrap();
+        assert_eq!(rula.legs, 1, "{}: RULA legs", a.phase);
+        let reba = a.reba.as_ref().unwrap();
+        let legs = &reba.group_a.legs;
+        assert_eq!(legs.score, 1, "{}: REBA legs {}", a.phase, legs.rule);
+        let words = &a.posture_words;
+        assert!(words.contains("sitting"), "{words}");
+        assert!(!words.contains("knees bent"), "{words}");
+    }
+}
