@@ -17,7 +17,8 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 EXE = os.path.join(ROOT, "target", "release", "posture-opt")
 TASKS = ["shelf", "shelf_lowered", "shelf_high", "shelf_heavy", "shelf_two_hands",
-         "bench_assembly", "overhead_drilling", "pallet", "pallet_raised", "side_transfer"]
+         "bench_assembly", "overhead_drilling", "pallet", "pallet_raised", "side_transfer",
+         "bench_seated"]
 
 
 def run(task, extra):

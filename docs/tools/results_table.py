@@ -17,6 +17,7 @@ TASKS = [
     ("overhead_drilling.yaml", None),
     ("pallet.yaml", "8 kg, pallet at 0.30 m, 2 h"),
     ("pallet_raised.yaml", "pallet on a lift table"),
+    ("bench_seated.yaml", "female worker, seated"),
 ]
 
 

@@ -19,6 +19,7 @@ import yaml
 TASKS = [
     "shelf", "shelf_lowered", "shelf_high", "shelf_heavy", "shelf_two_hands",
     "bench_assembly", "overhead_drilling", "pallet", "pallet_raised", "side_transfer",
+    "bench_seated",
 ]
 GOAL = 0.005
 
