@@ -32,7 +32,9 @@ places them (issue 33): "turned" (the whole body turned 60 degrees about the ver
 0.3 m sideways) and "staggered" (the left foot 0.25 m ahead of the right, the feet at yaws +30 and
 -5 degrees, both flat on the floor: the leg joints are solved here with Pinocchio's frame
 kinematics, `feet_placed`). The loads are the same for every posture; the foot forces act at
-points of the soles, so they move with the placed feet.
+points of the soles, so they move with the placed feet. "seated" sits (hips and knees at 90
+degrees, the pelvis lowered and moved back) with a fifth load, a seat's reaction at the pelvis's
+ischial point (issue 33.2).
 """
 import json
 import math
@@ -106,13 +108,22 @@ WORKER_LOADS = [
     load("l_hand_grip", [0.0, 0.015, 0.0], [-3.0, 6.0, -49.05], [-0.4, 0.9, -0.3]),
     load("r_foot", [0.09, -0.02, -0.068], [25.0, 30.0, 410.0], [0.0, 0.0, 2.5]),
     load("l_foot", [-0.04, 0.03, -0.068], [-15.0, -10.0, 395.0], [0.3, -0.2, -1.5]),
+    # a seat's reaction at the ischial tuberosities (0.055 x stature below the mid-hip point)
+    load("pelvis", [0.01, -0.005, -0.0965], [4.0, -2.0, 610.0], [0.0, 0.0, 0.7]),
 ]
+# Sitting: the pelvis lowered and moved back by about a thigh's length, hips and knees at 90 deg
+# (the feet wherever the legs put them: the loads are arbitrary).
+SEATED = {"pelvis_tx": -0.42, "pelvis_tz": -0.42, "pelvis_tilt": -0.1, "lumbar_flexion": 0.15,
+          "r_hip_flexion": math.pi / 2, "l_hip_flexion": math.pi / 2,
+          "r_knee_flexion": math.pi / 2, "l_knee_flexion": math.pi / 2,
+          "r_shoulder_flexion": 0.6, "r_elbow_flexion": 1.1, "neck_flexion": 0.3}
 
 ROBOTS = [
     ("worker", "robots/worker.urdf", WORKER_LOADS, [
         ("standing", STAND), ("stoop", STOOP), ("squat", SQUAT), ("reach", REACH),
         ("asymmetric", ASYM), ("turned", TURNED),
         ("staggered", (STAGGERED_BODY, STAGGERED_FEET)),  # (body, feet): see feet_placed
+        ("seated", SEATED),
     ]),
     ("two_link", "tests/data/two_link.urdf",
      [load("tip", [0.0, 0.0, 0.0], [0.0, 0.0, -49.05], [0.0, 0.0, 0.0]),

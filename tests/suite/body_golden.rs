@@ -2,13 +2,15 @@
 //!
 //! The golden values in `tests/data/pinocchio/*.json` come from `tests/data/pinocchio_golden.py`
 //! (run it from the repository root to regenerate them): inverse dynamics at rest
-//! (`rnea(q, 0, 0, fext)`) with gravity and four external loads (hand loads and arbitrary foot
-//! forces at points of the foot links, chosen in the script, not posture-opt's ground reaction),
+//! (`rnea(q, 0, 0, fext)`) with gravity and external loads (hand loads and arbitrary foot forces
+//! at points of the foot links — and, on the worker, a seat's force at the pelvis — chosen in the
+//! script, not posture-opt's ground reaction),
 //! the gravity torques and their derivative, every link frame's placement, the load points'
 //! positions and Jacobians, and the centre of mass with its Jacobian. Robots: the shipped worker
-//! (its floating pelvis is the URDF's prismatic + revolute pelvis joints; seven postures, two of
+//! (its floating pelvis is the URDF's prismatic + revolute pelvis joints; eight postures, two of
 //! them with the feet placed off the nominal stance as the planner places them: the whole body
-//! turned 60° and moved sideways, and a staggered stance with the feet flat at different yaws),
+//! turned 60° and moved sideways, and a staggered stance with the feet flat at different yaws;
+//! one sitting, hips and knees at 90°),
 //! the two-link arm, the
 //! branched tree and `geometry.urdf` (fixed joints mid-chain, continuous joints, tilted and
 //! non-unit axes, rotated origins).
@@ -261,7 +263,7 @@ fn check_robot(name: &str) {
 }
 
 #[test]
-fn worker_matches_pinocchio_in_seven_postures_with_hand_and_foot_loads() {
+fn worker_matches_pinocchio_in_eight_postures_with_hand_foot_and_seat_loads() {
     check_robot("worker");
 }
 
@@ -280,8 +282,8 @@ fn every_urdf_geometry_matches_pinocchio() {
     check_robot("geometry");
 }
 
-/// The golden files cover what the tests rely on: the worker's seven postures, both hands and
-/// both feet loaded, the pelvis joints among the compared torques, and feet placed off the
+/// The golden files cover what the tests rely on: the worker's eight postures (one sitting),
+/// both hands, both feet and the pelvis (a seat) loaded, the pelvis joints among the compared torques, and feet placed off the
 /// nominal stance (issue 33): flat on the floor, turned and moved with the whole body, or
 /// staggered at different yaws.
 #[test]
@@ -302,7 +304,8 @@ fn golden_files_cover_the_worker() {
             "reach",
             "asymmetric",
             "turned",
-            "staggered"
+            "staggered",
+            "seated"
         ]
     );
     let c = &doc["cases"][0];
@@ -312,7 +315,10 @@ fn golden_files_cover_the_worker() {
         .iter()
         .map(|l| l["link"].as_str().unwrap())
         .collect();
-    assert_eq!(links, ["r_hand_grip", "l_hand_grip", "r_foot", "l_foot"]);
+    assert_eq!(
+        links,
+        ["r_hand_grip", "l_hand_grip", "r_foot", "l_foot", "pelvis"]
+    );
     for j in posture_opt::body::worker::PELVIS_JOINTS {
         assert!(c["tau_nm"][j].is_f64(), "{j}");
     }
