@@ -914,7 +914,9 @@ impl Task {
                 ));
             }
             (Some(sf), Some(st)) => {
-                Some(st.with_seat(seat(sf, &model, &f.worker, generated, &field)?))
+                let seat = seat(sf, &model, &f.worker, generated, &field)?;
+                seat_within_reach_of_the_feet(&seat, &st, &f.worker, &field)?;
+                Some(st.with_seat(seat))
             }
         };
         if f.seat.is_some() && f.stance.as_ref().is_some_and(|s| s.area_m.is_some()) {
@@ -1705,6 +1707,65 @@ fn seat(
         [depth, width],
         sf.yaw_deg.to_radians(),
     ))
+}
+
+/// Refuses a seat the worker cannot sit on with the feet on the stance: a top above the
+/// standing hips (the legs straight), or an outline farther from either sole centre than the
+/// legs reach from a pelvis resting on it (thigh and shank straight, from the hip above the seat's
+/// nearest point to the ankle).
+fn seat_within_reach_of_the_feet(
+    seat: &Seat,
+    stance: &Stance,
+    worker: &Worker,
+    field: &dyn Fn(&str, String) -> TaskError,
+) -> Result<(), TaskError> {
+    let g = worker_geometry(worker);
+    let hips_seated_m = seat.height_m - seat.contact_in_link_m.z;
+    if hips_seated_m >= g.hip_height_m {
+        return Err(field(
+            "seat.height_m",
+            format!(
+                "{} m is too high to sit on: the worker's hips would be {hips_seated_m:.2} m above the floor, higher than the {:.2} m they stand at (lower the seat below {:.2} m)",
+                seat.height_m,
+                g.hip_height_m,
+                g.hip_height_m + seat.contact_in_link_m.z
+            ),
+        ));
+    }
+    let legs_m = g.hip_height_m - g.ankle_height_m;
+    let drop_m = hips_seated_m - g.ankle_height_m;
+    let reach_m = (legs_m * legs_m - drop_m * drop_m).max(0.0).sqrt();
+    for (i, foot) in stance.feet.iter().enumerate() {
+        let sole = stance.world_from_foot[i] * nalgebra::Point3::from(foot.sole_center_in_link_m);
+        let p = nalgebra::Vector2::new(sole.x, sole.y);
+        // distance from the sole centre to the seat's outline (0 inside)
+        let nearest = seat
+            .outline_m
+            .iter()
+            .enumerate()
+            .map(|(k, a)| {
+                let b = seat.outline_m[(k + 1) % seat.outline_m.len()];
+                let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+                (p - (a + t * (b - a))).norm()
+            })
+            .fold(f64::INFINITY, f64::min);
+        let d = if seat.margin_m(&p) >= 0.0 {
+            0.0
+        } else {
+            nearest
+        };
+        if d > reach_m + foot.half_length_m {
+            return Err(field(
+                "seat.position_m",
+                format!(
+                    "the seat is {d:.2} m from the {} foot's place on the stance, but seated the worker's legs reach {:.2} m: move the seat or the stance (stance.forward_m) closer",
+                    if i == 0 { "left" } else { "right" },
+                    reach_m + foot.half_length_m
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 impl Task {

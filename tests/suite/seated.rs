@@ -7,8 +7,9 @@
 //!   the seat in sacro-ischial, ischio-femoral and ischial sitting; Collins 2001: 19 % through the
 //!   feet at 90-90-90) — numbers from those studies, not from this code.
 //! * The seat's rows have the gradients of their values (central differences).
-//! * The task file's seat is checked at the boundary: ranges, no standing area with a seat, and
-//!   only a body with the generated worker's pelvis sits.
+//! * The task file's seat is checked at the boundary: ranges, no standing area with a seat, a
+//!   seat above the standing hips or beyond the legs' reach from the feet, and only a body with
+//!   the generated worker's pelvis sits.
 //! * Planned: tasks/bench_seated.yaml (shortened to one cycle) keeps the pelvis on the seat in
 //!   every phase, scores RULA's legs as supported and exempts REBA's knee adjustment, and says
 //!   "sitting".
@@ -169,6 +170,19 @@ fn the_task_files_seat_is_checked_naming_the_field() {
     assert!(e.contains("stance.area_m") && e.contains("seat"), "{e}");
     let e = with("seat: {", "seat: {yaw_deg: 400, ");
     assert!(e.contains("seat.yaw_deg"), "{e}");
+    // a seat the worker cannot sit on with the feet on the stance: the legs' length decides
+    // (the 1.62 m woman's hips stand about 0.81 m high)
+    let e = with("height_m: 0.42", "height_m: 0.95");
+    assert!(e.contains("seat.height_m") && e.contains("too high"), "{e}");
+    let e = with("position_m: [-0.35, 0.00]", "position_m: [-1.5, 0.00]");
+    assert!(
+        e.contains("seat.position_m") && e.contains("legs reach"),
+        "{e}"
+    );
+    // within reach it loads
+    assert!(
+        task_of(&text.replace("position_m: [-0.35, 0.00]", "position_m: [-0.45, 0.00]")).is_ok()
+    );
 }
 
 fn planned() -> &'static (Task, Plan) {
