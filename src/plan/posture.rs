@@ -721,8 +721,6 @@ impl PostureWork {
         }
     }
 
-    /// Foot `i`'s positional (into `self.jac`) and angular (into `self.jac2`) Jacobians of its
-    /// link frame.
     /// The seat's height minus that of the pelvis point resting on it (a seated body).
     pub fn seat_error(&self, task: &Task) -> Option<f64> {
         let seat = task.stance.as_ref()?.seat.as_ref()?;
@@ -746,6 +744,8 @@ impl PostureWork {
         true
     }
 
+    /// Foot `i`'s positional (into `self.jac`) and angular (into `self.jac2`) Jacobians of its
+    /// link frame.
     pub fn foot_jacobians(&mut self, task: &Task, i: usize) {
         let st = task.stance.as_ref().expect("a standing body");
         let l = st.feet[i].link;
