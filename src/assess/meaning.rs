@@ -196,13 +196,19 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
         }
         // the plan as executed (re-planned as the muscles tire) lasts, but its final postures
         // held from the start would not: say both, the plan first
-        Some((te, h)) if te <= task.duration_s() && replayed.exhaustion.is_none() => format!(
-            "the task can be done as planned, by changing posture as the muscles tire; the final postures held from the start would tire the {} out after {:.0} min; at the end the {} keep {:.0} % of their strength",
-            group(h),
-            te / 60.0,
-            group(c_h),
-            100.0 * c_left
-        ),
+        Some((te, h))
+            if te <= task.duration_s()
+                && replayed.exhaustion.is_none()
+                && plan.summary.exhaustion.is_none() =>
+        {
+            format!(
+                "the task can be done as planned, by changing posture as the muscles tire; the final postures held from the start would tire the {} out after {:.0} min; at the end the {} keep {:.0} % of their strength",
+                group(h),
+                te / 60.0,
+                group(c_h),
+                100.0 * c_left
+            )
+        }
         Some((te, h)) if te <= task.duration_s() => format!(
             "at this pace the {} give out after {:.0} min, before the task's {:.0} min are over",
             group(h),
@@ -210,9 +216,13 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
             task.duration_s() / 60.0
         ),
         Some((te, h)) => format!(
-            "the task can be done; kept up, the {} would give out after {:.1} h; at the end the {} keep {:.0} % of their strength",
+            "the task can be done; kept up, the {} would give out after {}; at the end the {} keep {:.0} % of their strength",
             group(h),
-            te / 3600.0,
+            if te < 7200.0 {
+                format!("{:.0} min", te / 60.0)
+            } else {
+                format!("{:.1} h", te / 3600.0)
+            },
             group(c_h),
             100.0 * c_left
         ),

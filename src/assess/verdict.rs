@@ -897,17 +897,27 @@ fn strength((men, women): (f64, f64)) -> Criterion {
         name: "the share strong enough",
         status,
         words: format!(
-            "{:.1} % of men and {:.1} % of women are strong enough for every load ({})",
-            100.0 * men,
-            100.0 * women,
+            "{} of men and {} of women are strong enough for every load ({})",
+            share_words(men),
+            share_words(women),
             match status {
                 Status::Acceptable => "within the design limit of 99 % of men and 75 % of women",
-                Status::Caution => "below the design limit of 99 % of men and 75 % of women",
-                _ => "below the upper limit of 25 % of men",
+                _ if men < 0.25 => "below the upper limit of 25 % of men",
+                _ if men < 0.99 && women < 0.75 => {
+                    "both below the design limit of 99 % of men and 75 % of women"
+                }
+                _ if men < 0.99 => "men below the design limit of 99 %; women within their 75 %",
+                _ => "women below the design limit of 75 %; men within their 99 %",
             }
         ),
         source: "NIOSH (1981) Work practices guide for manual lifting; 3DSSPP's strength limits",
     }
+}
+
+/// A share of people in words, rounded down to 0.1 % so that a share short of a limit never
+/// prints as the limit (98.96 % reads "98.9 %").
+fn share_words(x: f64) -> String {
+    format!("{:.1} %", (1000.0 * x).floor() / 10.0)
 }
 
 /// The highest L5/S1 compression of the plan's postures against NIOSH's 1981 limits.
@@ -970,6 +980,42 @@ mod tests {
         let l = [(0.25, 85.0), (0.0, 15.0)];
         assert_eq!(time_quantile(&l, 0.1), 0.0);
         assert_eq!(time_quantile(&l, 0.2), 0.25);
+    }
+
+    /// The share strong enough names which sex falls short of the 3DSSPP/NIOSH design limits
+    /// (99 % of men, 75 % of women) and never prints a share short of a limit as the limit.
+    #[test]
+    fn share_strong_enough_names_who_falls_short() {
+        let c = strength((0.986, 0.922));
+        assert_eq!(c.status, Status::Caution);
+        assert!(
+            c.words.starts_with("98.6 % of men and 92.2 % of women"),
+            "{}",
+            c.words
+        );
+        assert!(
+            c.words
+                .contains("men below the design limit of 99 %; women within"),
+            "{}",
+            c.words
+        );
+        let c = strength((0.99996, 0.70));
+        assert_eq!(c.status, Status::Caution);
+        assert!(
+            c.words
+                .contains("women below the design limit of 75 %; men within"),
+            "{}",
+            c.words
+        );
+        let c = strength((0.98996, 0.7499));
+        assert!(
+            c.words.starts_with("98.9 % of men and 74.9 % of women"),
+            "{}",
+            c.words
+        );
+        assert!(c.words.contains("both below"), "{}", c.words);
+        assert_eq!(strength((0.20, 0.05)).status, Status::Exceeded);
+        assert_eq!(strength((0.99, 0.75)).status, Status::Acceptable);
     }
 
     /// ISO 11226's holding-time lines: 4 min at 20°, 1 min at 60° (trunk), 2.5 min at 40°.

@@ -5,8 +5,9 @@ use crate::assess::rest::RestAdvice;
 use crate::plan::{Plan, Task};
 use std::fmt::Write;
 
-/// Work/rest advice as text lines.
-pub fn rest_summary(r: &RestAdvice, p: &Plan) -> String {
+/// Work/rest advice as text lines; `rohmert_applies`: whether the task holds a posture long enough
+/// for Rohmert's rule (the shift verdict's Rohmert criterion is not "not applicable").
+pub fn rest_summary(r: &RestAdvice, p: &Plan, rohmert_applies: bool) -> String {
     let group = |id: &str| {
         p.half_joint(id)
             .map(|i| p.half_joints[i].group.clone())
@@ -32,21 +33,36 @@ pub fn rest_summary(r: &RestAdvice, p: &Plan) -> String {
             let _ = writeln!(o, "  model: {}", r.model.note);
         }
     }
-    let _ = writeln!(
-        o,
-        "  Rohmert (1973) rest allowance: {:.1} s per cycle{}",
-        r.rohmert.rest_s_per_cycle,
-        if r.rohmert.limiting_half_joint.is_empty() {
-            String::new()
-        } else {
-            format!(" ({})", group(&r.rohmert.limiting_half_joint))
-        }
-    );
+    if !rohmert_applies {
+        let _ = writeln!(
+            o,
+            "  Rohmert (1973) rest allowance: not applicable (no posture is held longer than {:.0} s; the rule is for static holds)",
+            crate::assess::verdict::ISO_STATIC_S
+        );
+    } else if r.rohmert.rest_s_per_cycle < 0.05 {
+        let _ = writeln!(
+            o,
+            "  Rohmert (1973) rest allowance: none needed (no hold above 15 %MVC long enough to need it)"
+        );
+    } else {
+        let _ = writeln!(
+            o,
+            "  Rohmert (1973) rest allowance: {:.1} s per cycle ({})",
+            r.rohmert.rest_s_per_cycle,
+            group(&r.rohmert.limiting_half_joint)
+        );
+    }
     o
 }
 
 fn pct(x: f64) -> String {
     format!("{:.0} %", 100.0 * x)
+}
+
+/// A share of people strong enough, rounded down: 98.6 % reads "98 %", never the 99 % design
+/// limit it falls short of.
+fn share(x: f64) -> String {
+    format!("{:.0} %", (100.0 * x).floor())
 }
 
 /// A readable summary: the verdict first, then per phase the posture in words, the most-loaded
@@ -80,24 +96,15 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
         task.cycle_s()
     );
     let _ = writeln!(o);
-    match &s.exhaustion {
-        Some(e) => {
-            let mut why = vec![e.describe()];
-            why.extend(a.meaning.problems.iter().cloned());
-            let _ = writeln!(o, "VERDICT: cannot be done as planned: {}", why.join("; "));
-        }
-        None => {
-            let _ = writeln!(o, "VERDICT: {}", a.verdict.headline);
-        }
-    }
+    let _ = writeln!(o, "VERDICT: {}", a.verdict.headline);
     for c in &a.verdict.criteria {
         let _ = writeln!(o, "  [{}] {}: {}", c.status.words(), c.name, c.words);
     }
     let _ = writeln!(
         o,
         "strong enough for every load: {} of men, {} of women; RULA up to {}, REBA up to {}{}",
-        pct(a.capable_men),
-        pct(a.capable_women),
+        share(a.capable_men),
+        share(a.capable_women),
         a.rula_max.map(|x| x.to_string()).unwrap_or("-".into()),
         a.reba_max.map(|x| x.to_string()).unwrap_or("-".into()),
         match (a.back_compression_max_n, &a.back_compression_phase) {
@@ -202,8 +209,8 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
         }
         line.push(format!(
             "capable: men {}, women {}",
-            pct(pa.capable_men),
-            pct(pa.capable_women)
+            share(pa.capable_men),
+            share(pa.capable_women)
         ));
         if let Some(m) = ph.balance_margin_m {
             line.push(format!("balance margin {:.0} mm", 1000.0 * m));
@@ -246,9 +253,17 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
     );
     let _ = writeln!(
         o,
-        "total fatigue index U = {:.2} min over {:.0} min (worst: {} {:.2} min); {} re-plans, {} QP solves",
+        "total fatigue index U = {:.2} min over {:.0} min{} (worst: {} {:.2} min); {} re-plans, {} QP solves",
         s.total_u,
         s.duration_s / 60.0,
+        match &s.exhaustion {
+            Some(e) => format!(
+                " of the task's {:.0} (the plan stops where the {} give out)",
+                s.planned_duration_s / 60.0,
+                e.group
+            ),
+            None => String::new(),
+        },
         p.half_joint(&s.worst_half_joint)
             .map(|i| p.half_joints[i].group.clone())
             .unwrap_or_default(),
@@ -286,7 +301,11 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
         }
     }
-    o.push_str(&rest_summary(&a.rest, p));
+    let rohmert_applies =
+        a.verdict.criteria.iter().any(|c| {
+            c.id == "rohmert" && c.status != crate::assess::verdict::Status::NotApplicable
+        });
+    o.push_str(&rest_summary(&a.rest, p, rohmert_applies));
     if let Some(u) = &a.uncertainty {
         o.push_str(&sensitivity_table(u));
     }

@@ -580,7 +580,7 @@ fn time_to_exhaustion_is_the_cycle_by_cycle_replay() {
         (0.5, 2.0, 30.0),
         (0.0, 2.0, 60.0),
     ];
-    let (mut later_cycles, mut lasting) = (0, 0);
+    let (mut later_cycles, mut lasting, mut in_plan) = (0, 0, 0);
     for (load_kg, hold_s, rest_s) in cases {
         let what = format!("{load_kg} kg, {hold_s} s on, {rest_s} s off");
         let task = task_from(
@@ -670,6 +670,15 @@ fn time_to_exhaustion_is_the_cycle_by_cycle_replay() {
                     te_s / 60.0
                 );
                 assert_eq!(m.exhaustion_verdict, "gives_out", "{what}");
+                // a plan that itself gives out within the task is never "can be done"
+                if plan.summary.exhaustion.is_some() {
+                    in_plan += 1;
+                    assert!(
+                        !m.words.contains("can be done") && m.words.contains("give out after"),
+                        "{what}: the plan gives out, yet: {}",
+                        m.words
+                    );
+                }
                 assert_eq!(
                     m.first_to_give_out.as_deref(),
                     Some(plan.half_joints[h].group.as_str()),
@@ -688,8 +697,8 @@ fn time_to_exhaustion_is_the_cycle_by_cycle_replay() {
         }
     }
     assert!(
-        later_cycles >= 2 && lasting >= 1,
-        "family too narrow: {later_cycles} gave out after 3 cycles, {lasting} lasted"
+        later_cycles >= 2 && lasting >= 1 && in_plan >= 1,
+        "family too narrow: {later_cycles} gave out after 3 cycles, {lasting} lasted, {in_plan} within the plan"
     );
 }
 

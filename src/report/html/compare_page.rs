@@ -6,7 +6,7 @@ use super::analysis::{WorstWhy, group_courses, phase_strain, worst_phase};
 use super::body_view::{self, Scene, View};
 use super::findings::q;
 use super::fmt::{
-    DASH, Finding, Level, Table, dur, esc, findings_list, kv_table, mm, num, opt, pct, unit,
+    DASH, Finding, Level, Table, dur, esc, findings_list, kv_table, mm, num, opt, pct, share, unit,
 };
 use super::plan_page::worker_line;
 use crate::plan::Task;
@@ -90,15 +90,15 @@ fn other_measures(c: &Comparison) -> Vec<Finding> {
         if o.capable_women > best.capable_women + 0.05 {
             better.push(format!(
                 "strong enough for {} of women (against {})",
-                pct(o.capable_women),
-                pct(best.capable_women)
+                share(o.capable_women),
+                share(best.capable_women)
             ));
         }
         if o.capable_men > best.capable_men + 0.05 {
             better.push(format!(
                 "strong enough for {} of men (against {})",
-                pct(o.capable_men),
-                pct(best.capable_men)
+                share(o.capable_men),
+                share(best.capable_men)
             ));
         }
         if let (Some(x), Some(y)) = (o.back_compression_max_n, best.back_compression_max_n)
@@ -211,7 +211,7 @@ fn ranking_tables(c: &Comparison) -> String {
                         unit(x, 0, "N")
                     }
                 }),
-                format!("{} / {}", pct(o.capable_women), pct(o.capable_men)),
+                format!("{} / {}", share(o.capable_women), share(o.capable_men)),
                 format!(
                     "{}{}",
                     mm(o.min_clearance_m),

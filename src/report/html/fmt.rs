@@ -49,6 +49,16 @@ pub fn pct(x: f64) -> String {
     pct_dp(x, 0)
 }
 
+/// A share of people strong enough, as a whole percentage rounded down: 98.6 % reads "98 %",
+/// never the 99 % design limit it falls short of.
+pub fn share(x: f64) -> String {
+    if x.is_finite() {
+        pct_dp((100.0 * x).floor() / 100.0, 0)
+    } else {
+        DASH.into()
+    }
+}
+
 /// A value with its unit, joined by a non-breaking space ("1.52 m"); "—" when not finite.
 pub fn unit(x: f64, dp: usize, u: &str) -> String {
     if x.is_finite() {

@@ -6,7 +6,7 @@ use super::body_view::{self, Scene, View};
 use super::curves::capacity_figures;
 use super::findings::{self, group, q};
 use super::fmt::{
-    DASH, Finding, Level, Table, dur, esc, findings_list, kv_table, mm, num, opt, pct, unit,
+    DASH, Finding, Level, Table, dur, esc, findings_list, kv_table, mm, num, opt, pct, share, unit,
 };
 use crate::assess::Assessment;
 use crate::fatigue::Recovery;
@@ -427,8 +427,8 @@ fn phase_card(
             "strong enough",
             format!(
                 "{} of women, {} of men{}",
-                pct(pa.capable_women),
-                pct(pa.capable_men),
+                share(pa.capable_women),
+                share(pa.capable_men),
                 pa.capable
                     .first()
                     .map(|c| format!(
@@ -576,8 +576,8 @@ fn back_and_strength_table(a: &Assessment) -> String {
                 opt(b, |b| unit(b.compression_n, 0, "N")),
                 opt(b, |b| unit(b.shear_resultant_n, 0, "N")),
                 opt(verdict, |v| v.1.to_string()),
-                pct(p.capable_women),
-                pct(p.capable_men),
+                share(p.capable_women),
+                share(p.capable_men),
                 opt(p.capable.first(), |c| {
                     format!("{} ({})", esc(&c.group), unit(c.required_nm, 0, "N·m"))
                 }),
