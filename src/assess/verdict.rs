@@ -61,6 +61,7 @@
 
 use super::lifting::Lifting;
 use super::meaning::{Meaning, last_cycle_loads};
+use super::niosh::{Adjustment, Point};
 use super::phase::PhaseAssessment;
 use super::rest::{RestAdvice, rohmert_allowance, rohmert_endurance_min};
 use crate::plan::sqp::Stop;
@@ -855,7 +856,56 @@ fn lifting_index(lifting: Option<&Lifting>) -> Criterion {
                     .max_by(|a, b| a.0.total_cmp(&b.0))
             })
     });
+    // a declared lift outside the equation's limits has no lifting index: RWL = 0, no load is
+    // recommended (Waters et al. 1994, pp. 6-8: a multiplier beyond its range is 0)
+    let outside: Vec<String> = lifting
+        .map(|l| {
+            l.lifts
+                .iter()
+                .filter(|r| r.lifting_index.is_none())
+                .map(|r| {
+                    let at = |p: &Point| match p {
+                        Point::Origin => "origin",
+                        Point::Destination => "destination",
+                    };
+                    let why: Vec<String> = r
+                        .adjustments
+                        .iter()
+                        .filter_map(|a| match a {
+                            Adjustment::VerticalBeyondMaximum { at: p } => {
+                                Some(format!("the hands above 175 cm at the {}", at(p)))
+                            }
+                            Adjustment::HorizontalBeyondMaximum { at: p } => Some(format!(
+                                "the load more than 63 cm in front of the ankles at the {}",
+                                at(p)
+                            )),
+                            Adjustment::AsymmetryBeyondMaximum { at: p } => {
+                                Some(format!("asymmetry beyond 135° at the {}", at(p)))
+                            }
+                            Adjustment::DistanceBeyondMaximum => {
+                                Some("a vertical travel beyond 175 cm".to_string())
+                            }
+                            Adjustment::FrequencyBeyondMaximum => Some(
+                                "more lifts a minute than the frequency table allows".to_string(),
+                            ),
+                            _ => None,
+                        })
+                        .collect();
+                    format!(
+                        "'{}' is outside the lifting equation's limits ({}): its recommended weight limit is 0, no load is recommended",
+                        r.name,
+                        if why.is_empty() {
+                            "a multiplier is 0".to_string()
+                        } else {
+                            why.join(", ")
+                        }
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
     let (status, words) = match li {
+        _ if !outside.is_empty() => (Status::Exceeded, outside.join("; ")),
         None => (Status::NotApplicable, "no lift declared".to_string()),
         Some((x, what)) if x > 3.0 => (
             Status::Exceeded,

@@ -243,3 +243,37 @@ fn a_lifting_index_above_one_binds_the_verdict() {
     assert_eq!(v.binding, Some("niosh_lifting"), "{}", v.headline);
     assert!(v.headline.contains(&format!("{li:.2}")), "{}", v.headline);
 }
+
+/// A declared lift that ends with the hands above 175 cm is outside the lifting equation (VM = 0,
+/// RWL = 0: "no load is recommended", Waters et al. 1994): the lifting criterion is exceeded and
+/// says why, never "not applicable" as if no lift were declared (an ergonomist's trial found it
+/// so, with control at the destination).
+#[test]
+fn a_lift_beyond_the_equations_limits_is_exceeded_not_ignored() {
+    let text = "name: lift to a high shelf\nworker: {sex: male, stature_m: 1.755, mass_kg: 78.0}\nworkstation:\n  obstacles:\n    - {name: floor, plane: {normal: [0, 0, 1]}, position_m: [0, 0, 0]}\nphases:\n  - {name: pick, object: {center_m: [0.40, 0.0, 1.00], grip_width_m: 0.30, size_m: [0.25, 0.30, 0.20]}, load_kg: 4.0, duration_s: 2.0}\n  - {name: place high, object: {center_m: [0.40, 0.0, 1.80], grip_width_m: 0.30, size_m: [0.25, 0.30, 0.20]}, load_kg: 4.0, duration_s: 2.0}\nlifts:\n  - {name: to the high shelf, origin: pick, destination: place high, coupling: good, control_at_destination: true}\nrest_s: 8.0\ncycles: 2\n";
+    let t = Task::from_yaml_str(text, Path::new("high_lift.yaml")).unwrap();
+    let p = plan_task_with(&t, held()).unwrap();
+    let a = assess(&t, &p, 0.7);
+    let lift = &a.lifting.as_ref().unwrap().as_ref().unwrap().lifts[0];
+    let v_dest = lift.destination.unwrap().multipliers.v_cm;
+    assert!(v_dest > 175.0, "the hands at {v_dest} cm");
+    assert!(lift.lifting_index.is_none());
+    let c = a
+        .verdict
+        .criteria
+        .iter()
+        .find(|c| c.id == "niosh_lifting")
+        .unwrap();
+    assert_eq!(c.status, Status::Exceeded, "{}", c.words);
+    assert!(
+        c.words.contains("outside the lifting equation's limits")
+            && c.words.contains("above 175 cm at the destination"),
+        "{}",
+        c.words
+    );
+    assert!(
+        a.verdict.status >= Status::Exceeded,
+        "{}",
+        a.verdict.headline
+    );
+}
