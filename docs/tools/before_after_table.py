@@ -11,13 +11,7 @@ total fatigue U, and over the phases the largest trunk twist, side bend and forw
 (trunk flexion), the head's largest inclination from upright (forward positive, the largest
 magnitude), the worst RULA and REBA. Prints a Markdown table.
 """
-import json
-import os
-import subprocess
-import sys
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-EXE = os.path.join(ROOT, "target", "release", "posture-opt")
+from plan_json import plan, shipped
 TASKS = ["shelf", "shelf_lowered", "shelf_high", "shelf_heavy", "shelf_two_hands",
          "bench_assembly", "bench_seated", "overhead_drilling", "pallet", "pallet_raised",
          "side_transfer"]
@@ -25,12 +19,7 @@ BEFORE = ["--fatigue-only", "--no-zones", "--no-gaze"]
 
 
 def run(task, extra):
-    path = os.path.join(ROOT, "tasks", f"{task}.yaml")
-    r = subprocess.run([EXE, "plan", path, "--no-adapt", "--json"] + extra,
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"{task}: {r.stderr}")
-    d = json.loads(r.stdout)
+    d = plan(shipped(task), ["--no-adapt", *extra])
     a = d["assessment"]
     angles = [p["angles"] for p in a["phases"] if p.get("angles")]
 

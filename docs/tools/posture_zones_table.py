@@ -9,25 +9,14 @@ criteria and the shift verdict, and the zones the targets force the posture beyo
 Each task is planned twice with `posture-opt plan --no-adapt --json` (and `--no-zones`). Prints a
 Markdown table, then the forced excesses.
 """
-import json
-import os
-import subprocess
-import sys
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-EXE = os.path.join(ROOT, "target", "release", "posture-opt")
+from plan_json import plan, shipped
 TASKS = ["shelf", "shelf_lowered", "shelf_high", "shelf_heavy", "shelf_two_hands",
          "bench_assembly", "overhead_drilling", "pallet", "pallet_raised", "side_transfer",
          "bench_seated"]
 
 
 def run(task, extra):
-    path = os.path.join(ROOT, "tasks", f"{task}.yaml")
-    r = subprocess.run([EXE, "plan", path, "--no-adapt", "--json"] + extra,
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"{task}: {r.stderr}")
-    d = json.loads(r.stdout)
+    d = plan(shipped(task), ["--no-adapt", *extra])
     phases, a = d["summary"]["phases"], d["assessment"]
     crit = {c["id"]: c["status"].replace("_", " ") for c in a["verdict"]["criteria"]}
     return dict(

@@ -10,13 +10,9 @@ side_transfer without its `stance` line) and with `stance: {area_m: ±0.5 m squa
 as shipped). Temporary task files are written next to the shipped ones (their `robot:` paths are
 relative) and removed. Prints a Markdown table.
 """
-import json
 import os
-import subprocess
-import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-EXE = os.path.join(ROOT, "target", "release", "posture-opt")
+from plan_json import ROOT, plan
 TASKS = ["shelf", "shelf_lowered", "shelf_high", "shelf_heavy", "shelf_two_hands",
          "bench_assembly", "overhead_drilling", "pallet", "pallet_raised", "side_transfer"]
 AREA = "stance: {area_m: [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]}"
@@ -27,12 +23,9 @@ def run(task, text):
     with open(path, "w") as f:
         f.write(text)
     try:
-        r = subprocess.run([EXE, "plan", path, "--json"], capture_output=True, text=True)
+        d = plan(path)
     finally:
         os.remove(path)
-    if r.returncode != 0:
-        sys.exit(f"{task}: {r.stderr}")
-    d = json.loads(r.stdout)
     phases, a = d["summary"]["phases"], d["assessment"]
     return dict(
         u=d["summary"]["total_u"],

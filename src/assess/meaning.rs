@@ -80,6 +80,18 @@ pub fn last_cycle_loads(task: &Task, plan: &Plan) -> Vec<Vec<f64>> {
     loads
 }
 
+/// A time to exhaustion in the unit a reader would say it in: seconds below 2 min (a group out
+/// after 43 s is not "after 1 min"), minutes below 2 h, hours beyond.
+fn time_words(t_s: f64) -> String {
+    if t_s < 120.0 {
+        format!("{t_s:.0} s")
+    } else if t_s < 7200.0 {
+        format!("{:.0} min", t_s / 60.0)
+    } else {
+        format!("{:.1} h", t_s / 3600.0)
+    }
+}
+
 /// The meaning of `plan`'s fatigue.
 pub fn meaning(task: &Task, plan: &Plan) -> Meaning {
     meaning_with(task, plan, &task.fatigue)
@@ -202,27 +214,23 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
                 && plan.summary.exhaustion.is_none() =>
         {
             format!(
-                "the task can be done as planned, by changing posture as the muscles tire; the final postures held from the start would tire the {} out after {:.0} min; at the end the {} keep {:.0} % of their strength",
+                "the task can be done as planned, by changing posture as the muscles tire; the final postures held from the start would tire the {} out after {}; at the end the {} keep {:.0} % of their strength",
                 group(h),
-                te / 60.0,
+                time_words(te),
                 group(c_h),
                 100.0 * c_left
             )
         }
         Some((te, h)) if te <= task.duration_s() => format!(
-            "at this pace the {} give out after {:.0} min, before the task's {:.0} min are over",
+            "at this pace the {} give out after {}, before the task's {:.0} min are over",
             group(h),
-            te / 60.0,
+            time_words(te),
             task.duration_s() / 60.0
         ),
         Some((te, h)) => format!(
             "the task can be done; kept up, the {} would give out after {}; at the end the {} keep {:.0} % of their strength",
             group(h),
-            if te < 7200.0 {
-                format!("{:.0} min", te / 60.0)
-            } else {
-                format!("{:.1} h", te / 3600.0)
-            },
+            time_words(te),
             group(c_h),
             100.0 * c_left
         ),

@@ -48,6 +48,15 @@ pub struct Assessment {
     pub uncertainty: Option<uncertainty::Sensitivity>,
 }
 
+/// A share of the population (0..1) as a percentage rounded *down* to `dp` decimals, so a share
+/// just short of a design limit never reads as meeting it (0.9896 -> 98 at `dp` 0, never 99).
+/// The nudge of 1e-9 keeps binary fractions that are exactly representable in decimal (0.57, whose
+/// 100x is 56.999...) from dropping a whole step.
+pub fn share_percent_floor(share: f64, dp: i32) -> f64 {
+    let scale = 10f64.powi(dp);
+    (100.0 * share * scale + 1e-9).floor() / scale
+}
+
 /// Assesses a plan of `task` (capacity floor `floor` for the work/rest advice).
 pub fn assess(task: &Task, plan: &Plan, floor: f64) -> Assessment {
     let phases = phase::assess_phases(task, plan);

@@ -967,7 +967,7 @@ fn strength((men, women): (f64, f64)) -> Criterion {
 /// A share of people in words, rounded down to 0.1 % so that a share short of a limit never
 /// prints as the limit (98.96 % reads "98.9 %").
 fn share_words(x: f64) -> String {
-    format!("{:.1} %", (1000.0 * x).floor() / 10.0)
+    format!("{:.1} %", super::share_percent_floor(x, 1))
 }
 
 /// The highest L5/S1 compression of the plan's postures against NIOSH's 1981 limits.
@@ -1034,6 +1034,30 @@ mod tests {
 
     /// The share strong enough names which sex falls short of the 3DSSPP/NIOSH design limits
     /// (99 % of men, 75 % of women) and never prints a share short of a limit as the limit.
+    #[test]
+    fn shares_round_down_but_not_below_their_decimal_value() {
+        // 0.57 and 0.29 are stored just below their decimal value (100x = 56.99..., 28.99...);
+        // flooring must not drop them a whole step, while a share short of a limit stays short.
+        for (x, dp, want) in [
+            (0.57, 0, 57.0),
+            (0.29, 0, 29.0),
+            (0.58, 1, 58.0),
+            (0.9896, 0, 98.0),
+            (0.98999, 0, 98.0),
+            (0.986, 1, 98.6),
+            (1.0, 0, 100.0),
+            (0.0, 1, 0.0),
+        ] {
+            assert_eq!(
+                super::super::share_percent_floor(x, dp),
+                want,
+                "{x} at {dp}"
+            );
+        }
+        assert_eq!(share_words(0.57), "57.0 %");
+        assert_eq!(share_words(0.9999), "99.9 %");
+    }
+
     #[test]
     fn share_strong_enough_names_who_falls_short() {
         let c = strength((0.986, 0.922));

@@ -62,7 +62,7 @@ fn pct(x: f64) -> String {
 /// A share of people strong enough, rounded down: 98.6 % reads "98 %", never the 99 % design
 /// limit it falls short of.
 fn share(x: f64) -> String {
-    format!("{:.0} %", (100.0 * x).floor())
+    format!("{:.0} %", crate::assess::share_percent_floor(x, 0))
 }
 
 /// A readable summary: the verdict first, then per phase the posture in words, the most-loaded

@@ -16,10 +16,15 @@ use std::fmt::Write;
 /// Layouts drawn at most (the table lists them all).
 const MAX_DRAWN: usize = 12;
 
+/// A layout's colour: its shift verdict's, or worse if it cannot be done or tires out (a layout
+/// not acceptable over the shift is never shown as fine, however well its muscles hold out).
 fn level(o: &LayoutOutcome) -> Level {
-    if !o.feasible || o.exhaustion.is_some() {
+    use crate::assess::verdict::Status;
+    if !o.feasible || o.exhaustion.is_some() || o.shift_status == Status::Exceeded {
         Level::Bad
-    } else if o.minutes_to_exhaustion.is_some() {
+    } else if o.minutes_to_exhaustion.is_some()
+        || matches!(o.shift_status, Status::Caution | Status::NotDetermined)
+    {
         Level::Warn
     } else {
         Level::Ok

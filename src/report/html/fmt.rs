@@ -53,7 +53,10 @@ pub fn pct(x: f64) -> String {
 /// never the 99 % design limit it falls short of.
 pub fn share(x: f64) -> String {
     if x.is_finite() {
-        pct_dp((100.0 * x).floor() / 100.0, 0)
+        format!(
+            "{}\u{a0}%",
+            num(crate::assess::share_percent_floor(x, 0), 0)
+        )
     } else {
         DASH.into()
     }
