@@ -64,6 +64,9 @@ pub struct BodyAngles {
     pub left: ArmAngles,
     pub right_knee_flexion_deg: f64,
     pub left_knee_flexion_deg: f64,
+    /// The pelvis's heading against the feet's (their mean heading on the floor), toward the left
+    /// positive: the turn the hips make on planted feet (the hips' rotations, for an ergonomist).
+    pub pelvis_turn_deg: f64,
     pub both_feet_bear_weight: bool,
     /// The body sits on a seat: set by the caller that knows the supports ([`Self::measure`]
     /// leaves it false).
@@ -183,6 +186,30 @@ impl BodyAngles {
         let right = arm("r_", -1.0)?;
         let left_arm = arm("l_", 1.0)?;
         let (rk, lk) = (joint("r_knee_flexion")?, joint("l_knee_flexion")?);
+        // the feet's mean heading on the floor, and the pelvis's against it
+        let heading = |r: &nalgebra::Matrix3<f64>| {
+            let x = r * Vector3::x();
+            Vector3::new(x.x, x.y, 0.0)
+        };
+        let feet = heading(
+            &data
+                .link_pose(model, link(crate::body::worker::RIGHT_FOOT_LINK)?)
+                .0,
+        )
+        .try_normalize(1e-9)
+        .unwrap_or_else(Vector3::zeros)
+            + heading(
+                &data
+                    .link_pose(model, link(crate::body::worker::LEFT_FOOT_LINK)?)
+                    .0,
+            )
+            .try_normalize(1e-9)
+            .unwrap_or_else(Vector3::zeros);
+        let pelvis_turn_deg = if feet.norm() > 1e-9 {
+            deg(feet.cross(&fwd).z.atan2(feet.dot(&fwd)))
+        } else {
+            0.0
+        };
         Ok(BodyAngles {
             trunk_flexion_deg,
             trunk_side_bend_deg,
@@ -195,6 +222,7 @@ impl BodyAngles {
             left: left_arm,
             right_knee_flexion_deg: deg(q_rad[rk]),
             left_knee_flexion_deg: deg(q_rad[lk]),
+            pelvis_turn_deg,
             both_feet_bear_weight: left_foot_share
                 .is_none_or(|s| (UNILATERAL_SHARE..=1.0 - UNILATERAL_SHARE).contains(&s)),
             seated: false,

@@ -145,6 +145,14 @@ pub fn describe(a: &BodyAngles) -> String {
             ));
         }
     }
+    // planted feet and a turned pelvis: the hips rotate (named from 15°, a third of their range)
+    if !a.seated && a.pelvis_turn_deg.abs() >= 15.0 {
+        parts.push(format!(
+            "pelvis turned {:.0}° to the {} of the feet",
+            a.pelvis_turn_deg.abs(),
+            side(a.pelvis_turn_deg)
+        ));
+    }
     let knees = a.right_knee_flexion_deg.max(a.left_knee_flexion_deg);
     if a.seated {
         parts.push("sitting".into());

@@ -181,7 +181,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                 })
                 .collect();
             let why = if p.summary.zones && ph.converged {
-                "the least the targets allow"
+                "the least the search found"
             } else if p.summary.zones {
                 "the optimiser did not converge"
             } else {

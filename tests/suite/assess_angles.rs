@@ -128,6 +128,25 @@ fn pure_twist_is_twist() {
     close(a.trunk_twist_deg, -20.0, "twist to the right");
 }
 
+/// Hips rotated on planted feet turn the pelvis against the feet: the right hip rotated 30°
+/// outward and the left 30° inward (internal rotation positive, docs/body.md) turn both feet 30°
+/// to the right under a pelvis that faces ahead, so the pelvis faces 30° to the left of the feet;
+/// turning the whole body (`pelvis_rotation`, the feet with it) turns nothing against the feet.
+#[test]
+fn the_pelvis_turn_is_against_the_feet() {
+    let a = angles(&[("r_hip_rotation", -30.0), ("l_hip_rotation", 30.0)]);
+    close(a.pelvis_turn_deg, 30.0, "pelvis turned left of the feet");
+    assert!(
+        posture_opt::assess::phase::describe(&a)
+            .contains("pelvis turned 30° to the left of the feet")
+    );
+    let a = angles(&[("r_hip_rotation", 20.0), ("l_hip_rotation", -20.0)]);
+    close(a.pelvis_turn_deg, -20.0, "pelvis turned right of the feet");
+    let a = angles(&[("pelvis_rotation", 40.0)]);
+    close(a.pelvis_turn_deg, 0.0, "whole body turned");
+    assert!(!posture_opt::assess::phase::describe(&a).contains("pelvis turned"));
+}
+
 /// Turning the whole body (`pelvis_rotation`, the heading) is not a twist and not a bend: the
 /// angles are measured in the pelvis's own heading frame.
 #[test]

@@ -702,6 +702,7 @@ fn body(right: ArmAngles, left: ArmAngles) -> BodyAngles {
         left,
         right_knee_flexion_deg: 0.0,
         left_knee_flexion_deg: 0.0,
+        pelvis_turn_deg: 0.0,
         both_feet_bear_weight: true,
         seated: false,
     }
