@@ -234,7 +234,11 @@ pub fn shift_verdict(
     let mut unconverged = Vec::new();
     for s in &plan.summary.phases {
         let problems: Vec<String> = s.problems();
-        if !s.reachable && (s.beyond_reach_m.is_some() || s.target_inside.is_some()) {
+        if !s.reachable
+            && (s.beyond_reach_m.is_some()
+                || s.target_inside.is_some()
+                || s.target_blocked.is_some())
+        {
             proven.extend(problems);
         } else {
             unproven.extend(

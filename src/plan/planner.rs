@@ -1235,6 +1235,9 @@ impl<'t> Planner<'t> {
                         .find(|o| o.contains(tg))
                         .map(|o| o.spec.name.clone())
                 });
+                let target_blocked = ph.targets_m.iter().enumerate().find_map(|(h, tg)| {
+                    super::reach::hand_blocked(t, h, tg.as_ref()?).map(|b| b.words())
+                });
                 let (_, closest) = {
                     self.solver.pw.statics(t, q, &ph.hand_force_n);
                     let horizon = self.solver.settings.contact_horizon_m;
@@ -1276,6 +1279,7 @@ impl<'t> Planner<'t> {
                         .filter_map(|(h, tg)| super::reach::beyond_reach_m(t, h, tg.as_ref()?))
                         .reduce(f64::max),
                     target_inside,
+                    target_blocked,
                     min_clearance_m,
                     closest,
                     balance_margin_m: sol

@@ -14,6 +14,83 @@ use super::task::Task;
 use crate::body::{BodyModel, JointKind, StaticsData, forward_kinematics};
 use nalgebra::Vector3;
 
+/// A target the hand provably cannot bring its grip point to, for an obstacle next to it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HandBlocked {
+    pub obstacle: String,
+    /// The target's distance from the obstacle \[m\].
+    pub distance_m: f64,
+    /// How far the hand's own collision shape reaches beyond its grip point all round \[m\].
+    pub hand_m: f64,
+    /// The clearance the task asks between the body and obstacles \[m\].
+    pub clearance_m: f64,
+}
+
+impl HandBlocked {
+    pub fn words(&self) -> String {
+        format!(
+            "it is {:.0} mm from '{}', and the hand's shape reaches {:.0} mm beyond its grip point all round; with the {:.0} mm clearance the task asks (objective.clearance_m) the grip point comes no nearer than {:.0} mm: put the target where the grip point would be, or lower the clearance",
+            1000.0 * self.distance_m,
+            self.obstacle,
+            1000.0 * self.hand_m,
+            1000.0 * self.clearance_m,
+            1000.0 * (self.hand_m + self.clearance_m)
+        )
+    }
+}
+
+/// When hand `h`'s target is provably too near an obstacle: a capsule of radius r on the grip's
+/// rigid body whose axis passes d < r from the grip point holds the ball of radius r − d about
+/// that point, at any posture; so if an obstacle is nearer the target than that margin plus the
+/// task's clearance, no posture with the grip point on the target keeps the clearance.
+pub fn hand_blocked(task: &Task, h: usize, target_m: &Vector3<f64>) -> Option<HandBlocked> {
+    let m = &task.model;
+    let grip = task.hand_links[h].as_ref()?.0;
+    let mut data = StaticsData::new(m, 0);
+    forward_kinematics(m, &mut data, &vec![0.0; m.nq()]);
+    let o = Vector3::zeros();
+    let g = data.link_point(m, grip, &o);
+    let body = m.link_in_body[grip].body;
+    let hand_m = m
+        .links
+        .iter()
+        .enumerate()
+        .filter(|(l, _)| m.link_in_body[*l].body == body)
+        .flat_map(|(l, link)| link.capsules.iter().map(move |c| (l, c)))
+        .map(|(l, c)| {
+            let (a, b) = (
+                data.link_point(m, l, &c.a.coords),
+                data.link_point(m, l, &c.b.coords),
+            );
+            let ab = b - a;
+            let t = if ab.norm_squared() > 0.0 {
+                ((g - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            c.radius_m - (a + t * ab - g).norm()
+        })
+        .fold(0.0, f64::max);
+    let mut near = Vec::new();
+    task.workstation
+        .clearances(target_m, target_m, 0.0, f64::INFINITY, &mut near);
+    let closest = near
+        .iter()
+        .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))?;
+    let clearance_m = task.objective.clearance_m;
+    (closest.distance_m >= 0.0 && closest.distance_m < hand_m + clearance_m - 1e-9).then(|| {
+        HandBlocked {
+            obstacle: task.workstation.obstacles[closest.obstacle]
+                .spec
+                .name
+                .clone(),
+            distance_m: closest.distance_m,
+            hand_m,
+            clearance_m,
+        }
+    })
+}
+
 /// Upper bound on the distance between the frames of links `a` and `b` at any posture \[m\].
 pub fn chain_length_m(m: &BodyModel, a: usize, b: usize) -> f64 {
     let ancestors = |mut l: usize| {

@@ -121,6 +121,9 @@ pub struct PhaseSummary {
     pub beyond_reach_m: Option<f64>,
     /// The obstacle a target lies inside, if any.
     pub target_inside: Option<String>,
+    /// Why a target next to an obstacle is provably beyond the hand's grip point (the obstacle,
+    /// the distance, the hand's shape and the clearance, in words), if it is.
+    pub target_blocked: Option<String>,
     pub min_clearance_m: f64,
     /// What the closest clearance is to (an obstacle or a body part).
     pub closest: Option<String>,
@@ -233,6 +236,11 @@ impl PhaseSummary {
         if !self.reachable {
             v.push(match &self.target_inside {
                 Some(o) => format!("'{}': the target lies inside '{o}'", self.phase),
+                None if self.target_blocked.is_some() => format!(
+                    "'{}': the hand cannot bring its grip point to the target: {}",
+                    self.phase,
+                    self.target_blocked.as_deref().unwrap_or_default()
+                ),
                 None if self.beyond_reach_m.is_some() => format!(
                     "'{}': the target is out of reach by {:.0} mm (standing where the task allows, balance kept; it is farther than the body is long)",
                     self.phase,

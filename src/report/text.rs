@@ -136,6 +136,8 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                     " — TARGET {} by {:.0} mm (standing where the task allows, balance kept){}",
                     if ph.beyond_reach_m.is_some() {
                         "OUT OF REACH"
+                    } else if ph.target_blocked.is_some() {
+                        "NOT REACHABLE"
                     } else {
                         "NOT REACHED (no posture that reaches it found; within the body's length)"
                     },
@@ -143,6 +145,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
                     ph.target_inside
                         .as_ref()
                         .map(|o| format!(" (it lies inside '{o}')"))
+                        .or_else(|| ph.target_blocked.as_ref().map(|b| format!(" ({b})")))
                         .unwrap_or_default()
                 )
             }

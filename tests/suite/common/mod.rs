@@ -384,6 +384,7 @@ pub const NULLABLE_KEYS: &[&str] = &[
     "share_group",
     "st_li",
     "target_inside",
+    "target_blocked",
     "hand_frames",
     "hand_position_m",
     "replan_every_s",
