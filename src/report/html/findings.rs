@@ -60,14 +60,20 @@ pub fn verdict(plan: &Plan, a: &Assessment) -> Finding {
         esc(&group(plan, &s.lowest_capacity_half_joint)),
         dur(s.lowest_capacity_t_s)
     );
+    let v = &a.verdict;
+    // one verdict, the shift verdict's, in the text, the JSON and here; a plan that gives out
+    // says so right after it (the shift verdict counts it in its fatigue criterion)
     if let Some(e) = &s.exhaustion {
-        let mut t = format!("Cannot be done as planned: {}.", exhaustion_html(e));
+        let mut t = format!(
+            "{}. As planned, {}.",
+            capitalise(&esc(&v.headline)),
+            exhaustion_html(e)
+        );
         if !problems.is_empty() {
             t.push_str(&format!(" Also: {}.", problems.join("; ")));
         }
         return Finding::new(Level::Bad, t);
     }
-    let v = &a.verdict;
     let level = match v.status {
         Status::NotApplicable | Status::Acceptable => Level::Ok,
         Status::Caution | Status::NotDetermined => Level::Warn,
