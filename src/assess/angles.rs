@@ -191,20 +191,15 @@ impl BodyAngles {
             let x = r * Vector3::x();
             Vector3::new(x.x, x.y, 0.0)
         };
-        let feet = heading(
-            &data
-                .link_pose(model, link(crate::body::worker::RIGHT_FOOT_LINK)?)
-                .0,
-        )
-        .try_normalize(1e-9)
-        .unwrap_or_else(Vector3::zeros)
-            + heading(
-                &data
-                    .link_pose(model, link(crate::body::worker::LEFT_FOOT_LINK)?)
-                    .0,
-            )
-            .try_normalize(1e-9)
-            .unwrap_or_else(Vector3::zeros);
+        // (a body without the worker's foot links has no feet to turn against: 0)
+        let feet: Vector3<f64> = [
+            crate::body::worker::RIGHT_FOOT_LINK,
+            crate::body::worker::LEFT_FOOT_LINK,
+        ]
+        .iter()
+        .filter_map(|name| model.frame_link(name).ok())
+        .filter_map(|l| heading(&data.link_pose(model, l).0).try_normalize(1e-9))
+        .sum();
         let pelvis_turn_deg = if feet.norm() > 1e-9 {
             deg(feet.cross(&fwd).z.atan2(feet.dot(&fwd)))
         } else {

@@ -120,6 +120,13 @@ pub struct ShiftVerdict {
     pub criteria: Vec<Criterion>,
 }
 
+impl ShiftVerdict {
+    /// The criterion with `id` ("iso_11226", "niosh_lifting", …), if the verdict has it.
+    pub fn criterion(&self, id: &str) -> Option<&Criterion> {
+        self.criteria.iter().find(|c| c.id == id)
+    }
+}
+
 /// The regions whose groups Jonsson's load levels judge.
 pub const JONSSON_REGIONS: [&str; 4] = ["shoulder", "elbow", "grip", "neck"];
 /// Jonsson (1982): (should not exceed, must not exceed) as fractions of MVC.
@@ -1036,8 +1043,6 @@ mod tests {
         assert_eq!(time_quantile(&l, 0.2), 0.25);
     }
 
-    /// The share strong enough names which sex falls short of the 3DSSPP/NIOSH design limits
-    /// (99 % of men, 75 % of women) and never prints a share short of a limit as the limit.
     #[test]
     fn shares_round_down_but_not_below_their_decimal_value() {
         // 0.57 and 0.29 are stored just below their decimal value (100x = 56.99..., 28.99...);
@@ -1062,6 +1067,8 @@ mod tests {
         assert_eq!(share_words(0.9999), "99.9 %");
     }
 
+    /// The share strong enough names which sex falls short of the 3DSSPP/NIOSH design limits
+    /// (99 % of men, 75 % of women) and never prints a share short of a limit as the limit.
     #[test]
     fn share_strong_enough_names_who_falls_short() {
         let c = strength((0.986, 0.922));

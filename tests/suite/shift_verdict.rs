@@ -47,7 +47,7 @@ fn overhead_hold_is_not_acceptable_by_iso_11226() {
     let (t, p) = overhead();
     let a = assess(t, p, 0.7);
     let v = &a.verdict;
-    let iso = v.criteria.iter().find(|c| c.id == "iso_11226").unwrap();
+    let iso = v.criterion("iso_11226").unwrap();
     let elevation = a.phases[0]
         .angles
         .as_ref()
@@ -63,7 +63,7 @@ fn overhead_hold_is_not_acceptable_by_iso_11226() {
     assert_eq!(v.status, Status::Exceeded, "{}", v.headline);
     assert!(!v.headline.contains("indefinitely"), "{}", v.headline);
     let binding = v.binding.expect("a binding criterion");
-    let b = v.criteria.iter().find(|c| c.id == binding).unwrap();
+    let b = v.criterion(binding).unwrap();
     assert_eq!(b.status, Status::Exceeded);
     assert!(v.headline.contains(b.name), "{}", v.headline);
 }
@@ -90,12 +90,7 @@ fn jonsson_mean_follows_the_plan_loads() {
         }
         worst = worst.max(fd / d);
     }
-    let c = a
-        .verdict
-        .criteria
-        .iter()
-        .find(|c| c.id == "jonsson_mean")
-        .unwrap();
+    let c = a.verdict.criterion("jonsson_mean").unwrap();
     let expected = if worst > JONSSON_MEAN.1 {
         Status::Exceeded
     } else if worst > JONSSON_MEAN.0 {
@@ -200,10 +195,10 @@ fn a_hold_cut_into_phases_is_one_hold() {
     }
     let p = plan_task_with(&t, held()).unwrap();
     let v = assess(&t, &p, 0.7).verdict;
-    let iso = v.criteria.iter().find(|c| c.id == "iso_11226").unwrap();
+    let iso = v.criterion("iso_11226").unwrap();
     assert_eq!(iso.status, Status::Exceeded, "{}", iso.words);
     assert!(iso.words.contains("held 20 s"), "{}", iso.words);
-    let en = v.criteria.iter().find(|c| c.id == "en_1005_4").unwrap();
+    let en = v.criterion("en_1005_4").unwrap();
     assert_eq!(en.status, Status::NotApplicable, "{}", en.words);
 }
 
@@ -258,12 +253,7 @@ fn a_lift_beyond_the_equations_limits_is_exceeded_not_ignored() {
     let v_dest = lift.destination.unwrap().multipliers.v_cm;
     assert!(v_dest > 175.0, "the hands at {v_dest} cm");
     assert!(lift.lifting_index.is_none());
-    let c = a
-        .verdict
-        .criteria
-        .iter()
-        .find(|c| c.id == "niosh_lifting")
-        .unwrap();
+    let c = a.verdict.criterion("niosh_lifting").unwrap();
     assert_eq!(c.status, Status::Exceeded, "{}", c.words);
     assert!(
         c.words.contains("outside the lifting equation's limits")
