@@ -82,6 +82,12 @@ pub struct NotWorker(pub String);
 pub const OUT_TO_SIDE_M: f64 = 0.10;
 
 impl BodyAngles {
+    /// The trunk's turn against the feet: its twist against the pelvis plus the pelvis's turn
+    /// against the feet (toward the left positive), the twist an observer sees from the feet.
+    pub fn trunk_turn_deg(&self) -> f64 {
+        self.trunk_twist_deg + self.pelvis_turn_deg
+    }
+
     /// Angles of posture `q_rad` of the generated worker; `left_foot_share` is the share of the
     /// weight on the left foot (from the statics), `None` for a body without feet.
     pub fn measure(

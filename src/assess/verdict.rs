@@ -578,6 +578,7 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         for (v, what) in [
             (a.trunk_side_bend_deg, "trunk bent sideways"),
             (a.trunk_twist_deg, "trunk twisted"),
+            (a.trunk_turn_deg(), "trunk turned against the feet"),
         ] {
             if v.abs().round() > 10.0 {
                 exceeded.push(format!("'{name}': {what} {:.0}° (beyond 10°)", v.abs()));
@@ -689,6 +690,7 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         for (v, what) in [
             (a.trunk_side_bend_deg, "trunk bent sideways"),
             (a.trunk_twist_deg, "trunk twisted"),
+            (a.trunk_turn_deg(), "trunk turned against the feet"),
         ] {
             if v.abs().round() > 10.0 {
                 out(

@@ -380,10 +380,14 @@ pub struct Discomfort {
 
 /// Weight of a joint's displacement term: trunk bending sideways and twisting count ten times an
 /// arm or leg joint, trunk flexion and the neck three times (after the joint weights of Marler et
-/// al. 2005, which make the torso move last in reaching). ASSUMPTION where not named there.
+/// al. 2005, which make the torso move last in reaching), the neck's twist ten times, as the
+/// trunk's. ASSUMPTION where not named there. The neck's twist: RULA and REBA score a twisted
+/// neck as they score a twisted trunk, and with a weight of 3 the plans looked at their work with
+/// the head turned to its 45° limit and the trunk turned the other way (shelf's 'pick from cart':
+/// the turn cost the neck nothing the fatigue term sees).
 pub fn displacement_weight(joint: &str) -> f64 {
     match joint {
-        "lumbar_lateral_bending" | "lumbar_axial_rotation" => 10.0,
+        "lumbar_lateral_bending" | "lumbar_axial_rotation" | "neck_axial_rotation" => 10.0,
         "lumbar_flexion" => 3.0,
         j if j.starts_with("neck_") => 3.0,
         _ => 1.0,

@@ -5,7 +5,7 @@
 //! Each zone is one row `g(q) ≤ 0` per phase ([`Zone`]), measured as the shift verdict measures
 //! it ([`crate::assess::angles`]): the trunk's long axis against the vertical in the body's
 //! sagittal plane (forward positive) and out of it (side bending), the thorax's twist against the
-//! pelvis, each upper arm's angle against straight down, the head's long axis against the
+//! pelvis and its turn against the feet, each upper arm's angle against straight down, the head's long axis against the
 //! vertical, the neck's flexion and side bending (head against trunk; both in the head's own
 //! planes, [`crate::body::head`]) and its twist joint, and each wrist's flexion and deviation
 //! joints. The wrists' rows keep near-ties apart: without them a bent and a straight wrist can
@@ -17,6 +17,7 @@
 //! | trunk inclination | 20° for a hold of 4 min or more, 60° for 1 min or less, linear in between (the holding-time line read the other way); 60° for movements | ISO 11226 Fig. 2; EN 1005-4 (beyond 60° not acceptable) |
 //! | trunk leaning back | 5° | ISO 11226 (backward inclination without support not acceptable); 5°: [`ISO_BACKWARD_TOLERANCE_DEG`], ASSUMPTION |
 //! | trunk side bending, axial rotation | 10° each way | ISO 11226; EN 1005-4 |
+//! | trunk turned against the feet | 10° each way | ISO 11226; EN 1005-4 (see below) |
 //! | upper-arm elevation | 20° for 3 min or more, 60° for 1 min or less, linear in between; 60° for movements | ISO 11226 Fig. 3; EN 1005-4 |
 //! | head inclination | 85° forward, 5° back | ISO 11226 |
 //! | neck flexion | 25° | ISO 11226 |
@@ -31,6 +32,19 @@
 //! twice a minute) as well as its unacceptable ones, and applies the head's limits to movements
 //! too: where the layout allows, a posture no standard questions costs nothing to choose.
 //!
+//! **The trunk's turn against the feet** is its twist against the pelvis plus the pelvis's turn
+//! against the feet (the hips' rotation on planted feet; the feet's mean heading, as
+//! [`crate::assess::angles`] measures it). The standards' trunk rotation is the upper body's twist
+//! out of the posture the feet set: NIOSH measures asymmetry from the mid-sagittal plane of "the
+//! neutral body position", the feet's (Waters et al. 1993), and an observer scoring RULA or REBA
+//! sees the shoulders turned against the feet whether the lumbar spine or the hips turn. Without
+//! this row the pelvis turned up to 38° against the feet while the lumbar twist stayed within its
+//! 10° (shelf: the trunk faced 44° left of a board 22° to the right, the head turned 45° back to
+//! it), since the hips' rotators hold almost no gravity moment. So the plan keeps both: the lumbar
+//! twist and the whole turn within 10° (ASSUMPTION: the standards' trunk-rotation limit applied to
+//! the turn against the feet). A body without the worker's foot links turns against nothing
+//! (the row is its lumbar twist).
+//!
 //! **Elastic.** A target can force a posture outside a zone (a shelf above the head forces the
 //! arm up). So each row has its own slack with a linear penalty [`ZONE_PENALTY_PER_RAD`] in the
 //! objective (an ℓ1 exact penalty, the elastic mode of SNOPT): inside the zones nothing changes,
@@ -38,6 +52,7 @@
 //! separately, and reports it ([`Excess`]).
 
 use super::task::Task;
+use crate::body::worker::{LEFT_FOOT_LINK, RIGHT_FOOT_LINK};
 use crate::body::{BodyModel, StaticsData, forward_kinematics};
 use nalgebra::Vector3;
 
@@ -71,7 +86,7 @@ pub const NECK_SIDE_BEND_DEG: f64 = 10.0;
 pub const NECK_TWIST_DEG: f64 = 45.0;
 
 /// Number of zone rows per phase.
-pub const ZONE_ROWS: usize = 23;
+pub const ZONE_ROWS: usize = 25;
 
 /// Penalty of one radian beyond a zone, in the objective's units (its fatigue term is the
 /// logarithm of the total fatigue index, so 10 makes a degree beyond a zone cost as much as
@@ -132,6 +147,8 @@ pub enum Zone {
     LeftWristExtended,
     LeftWristRadial,
     LeftWristUlnar,
+    TurnLeft,
+    TurnRight,
 }
 
 impl Zone {
@@ -159,6 +176,8 @@ impl Zone {
         Zone::LeftWristExtended,
         Zone::LeftWristRadial,
         Zone::LeftWristUlnar,
+        Zone::TurnLeft,
+        Zone::TurnRight,
     ];
 
     /// What the zone limits, in words ("trunk twisted to the left").
@@ -187,6 +206,8 @@ impl Zone {
             Zone::LeftWristExtended => "left wrist extended",
             Zone::LeftWristRadial => "left wrist bent toward the thumb (radial deviation)",
             Zone::LeftWristUlnar => "left wrist bent toward the little finger (ulnar deviation)",
+            Zone::TurnLeft => "trunk turned to the left of the feet",
+            Zone::TurnRight => "trunk turned to the right of the feet",
         }
     }
 
@@ -241,7 +262,7 @@ impl ZoneLimits {
         let (ns, nt) = (NECK_SIDE_BEND_DEG, NECK_TWIST_DEG);
         let deg = [
             trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0, ns, ns, nt, nt, w, w,
-            d, d, w, w, d, d,
+            d, d, w, w, d, d, 10.0, 10.0,
         ];
         ZoneLimits {
             max_rad: deg.map(f64::to_radians),
@@ -282,6 +303,8 @@ struct Frames {
     wrist: [[usize; 2]; 2],
     /// q index of the neck's twist joint.
     neck_twist: usize,
+    /// The feet's links (right, left), where the body has them.
+    feet: [Option<usize>; 2],
 }
 
 impl Frames {
@@ -303,6 +326,22 @@ impl Frames {
         let side = a.dot(&left).clamp(-1.0, 1.0).asin();
         let rel = nalgebra::UnitQuaternion::from_matrix(&(r_pelvis.transpose() * r_trunk));
         let twist = crate::body::stance::wrap_pi(2.0 * rel.k.atan2(rel.w));
+        // the pelvis's heading against the feet's mean heading (0 without the feet's links)
+        let feet: Vector3<f64> = f
+            .feet
+            .iter()
+            .flatten()
+            .filter_map(|&l| {
+                let x = data.link_pose(model, l).0 * Vector3::x();
+                Vector3::new(x.x, x.y, 0.0).try_normalize(1e-9)
+            })
+            .sum();
+        let pelvis_turn = if feet.norm() > 1e-9 {
+            feet.cross(&fwd).z.atan2(feet.dot(&fwd))
+        } else {
+            0.0
+        };
+        let turn = twist + pelvis_turn;
         let h = crate::body::head::HeadAngles::measure(&r_trunk, &r_head);
         let (head, neck, neck_side) = (h.inclination_rad, h.neck_flexion_rad, h.neck_side_bend_rad);
         let nt = q[f.neck_twist];
@@ -337,6 +376,8 @@ impl Frames {
             -q[lf],
             q[ld],
             -q[ld],
+            turn,
+            -turn,
         ]
     }
 
@@ -405,6 +446,7 @@ impl ZoneWork {
                 ],
             ],
             neck_twist: model.q_index("neck_axial_rotation").ok()?,
+            feet: [link(RIGHT_FOOT_LINK), link(LEFT_FOOT_LINK)],
         };
         let links = [
             frames.pelvis,
@@ -414,7 +456,10 @@ impl ZoneWork {
             frames.upper[1],
             frames.fore[0],
             frames.fore[1],
-        ];
+        ]
+        .into_iter()
+        .chain(frames.feet.into_iter().flatten())
+        .collect::<Vec<_>>();
         let moving = (0..model.nq())
             .filter(|&k| {
                 let j = model.joint_of_q[k];
