@@ -20,7 +20,7 @@
 //!    tests/data/reference/README.md).
 //!
 //! With the zones and the gaze (`results_zones/`, the statement's fatigue-only objective
-//! `ln(ΣU + 1e-3) + 10 Σv`): the same objective consistency, the reference's 23 zone angles equal
+//! `ln(ΣU + 1e-3) + 10 Σv`): the same objective consistency, the reference's 25 zone angles equal
 //! posture-opt's on its best postures, and the zoned fatigue-only plan is no worse than the
 //! median of the reference's sustainable whole-plan local optima (shelf a known miss, held
 //! within its measured gap to the reference's best).
@@ -492,7 +492,7 @@ fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
     );
 }
 
-/// The reference's names of the 23 zone angles, in the planner's order (`Zone::ALL`).
+/// The reference's names of the 25 zone angles, in the planner's order (`Zone::ALL`).
 const REFERENCE_ZONE_NAMES: [&str; ZONE_ROWS] = [
     "trunk inclination (forward)",
     "trunk leaning back",
@@ -517,9 +517,11 @@ const REFERENCE_ZONE_NAMES: [&str; ZONE_ROWS] = [
     "left wrist extension",
     "left wrist radial deviation",
     "left wrist ulnar deviation",
+    "trunk turn against the feet left",
+    "trunk turn against the feet right",
 ];
 
-/// The reference's own implementation of the statement's 23 zone angles, on its best postures,
+/// The reference's own implementation of the statement's 25 zone angles, on its best postures,
 /// gives posture-opt's (`ZoneWork::angles_rad`, which the planner constrains and the plan reports).
 #[test]
 fn the_reference_zone_angles_are_the_planners() {

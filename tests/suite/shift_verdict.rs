@@ -5,7 +5,7 @@
 //! determined", never a pass; a target farther than the body is long is a proven "cannot".
 
 use posture_opt::assess::assess;
-use posture_opt::assess::verdict::{JONSSON_MEAN, JONSSON_REGIONS, Status};
+use posture_opt::assess::verdict::{JONSSON_MEAN, JONSSON_REGIONS, Status, shift_verdict};
 use posture_opt::plan::sqp::{STALL_KKT, Stop};
 use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
 use std::path::Path;
@@ -66,6 +66,37 @@ fn overhead_hold_is_not_acceptable_by_iso_11226() {
     let b = v.criterion(binding).unwrap();
     assert_eq!(b.status, Status::Exceeded);
     assert!(v.headline.contains(b.name), "{}", v.headline);
+}
+
+/// ISO 11226's and EN 1005-4's trunk rotation is judged against the feet as well as against the
+/// pelvis: the same planned hold re-judged with its pelvis turned 14° against the feet (the
+/// lumbar twist as planned, within 10°) is not acceptable, and the words say the trunk is turned
+/// against the feet; turned 9° it is not flagged for that.
+#[test]
+fn a_trunk_turned_against_the_feet_is_judged_as_a_twist() {
+    let (t, p) = overhead();
+    let a = assess(t, p, 0.7);
+    let judge = |turn_deg: f64| {
+        let mut phases = a.phases.clone();
+        for ph in &mut phases {
+            let x = ph.angles.as_mut().expect("angles");
+            x.pelvis_turn_deg = turn_deg - x.trunk_twist_deg;
+        }
+        let lifting = a.lifting.as_ref().and_then(|l| l.as_ref().ok());
+        shift_verdict(t, p, &a.meaning, &phases, &a.rest, lifting, None)
+    };
+    let turned = judge(14.0);
+    let iso = turned.criterion("iso_11226").unwrap();
+    assert_eq!(iso.status, Status::Exceeded, "{}", iso.words);
+    assert!(
+        iso.words
+            .contains("'hold panel': trunk turned against the feet 14° (beyond 10°)"),
+        "{}",
+        iso.words
+    );
+    let within = judge(9.0);
+    let iso = within.criterion("iso_11226").unwrap();
+    assert!(!iso.words.contains("against the feet"), "{}", iso.words);
 }
 
 /// Jonsson's mean load level, recomputed here from the plan's steps of the last cycle (each

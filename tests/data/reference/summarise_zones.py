@@ -29,3 +29,23 @@ for t in tasks:
           f"{r['zone_slack_sum_rad']:.3g} | {'; '.join(ex) or 'none'} | {min(gm) if gm else None:.3g} | "
           f"{herr:.2g} | {clo:.4f} / {cls:.4f} | {bal:.4f} | {r['feasible']['ok']} | {jl} | "
           f"{r['starts']['count']} | {r['runtime_s']:.0f} | {r.get('checkpoint')} |")
+
+# the sustainable whole-plan local optima (no muscle group exhausted) and the turn rows
+print()
+for t in tasks:
+    p = os.path.join(here, "results_zones", f"{t}.json")
+    if not os.path.exists(p):
+        continue
+    r = json.load(open(p))
+    sus = sorted(d["objective"] for d in r["joint_local_optima"] if not d["exhausted"])
+    n = len(sus)
+    med = (sus[n // 2] if n % 2 else 0.5 * (sus[n // 2 - 1] + sus[n // 2])) if n else None
+    rows = next(iter(r["zone_angles_deg"].values()))
+    print(f"{t}: {len(rows)} zone rows; {n} sustainable whole-plan local optima of "
+          f"{len(r['joint_local_optima'])}, median objective {med if med is None else f'{med:.6f}'}")
+    for ph, z in r["zone_angles_deg"].items():
+        turn = z.get("trunk turn against the feet left")
+        tw = z.get("trunk twist left")
+        if turn is not None:
+            print(f"  {ph}: twist {tw:.3f} deg, turn against the feet {turn:.3f} deg "
+                  f"(pelvis {turn - tw:.3f} deg)")

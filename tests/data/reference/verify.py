@@ -14,13 +14,18 @@
    reported centres of pressure stay within their soles (or do not move outward), a bound is
    active when alpha < 1; (d) the reported per-foot wrench equals the applied one;
 5. NLP Jacobians (hands, feet, torque identity, clearances, balance) vs finite differences;
-6. distances vs brute-force sampling.
+6. distances vs brute-force sampling;
+8. posture zones (25 rows) and gaze: angles on hand-built postures, limits, holds, Jacobians;
+   the trunk's turn against the feet (rows 24-25) vs frame yaws, an analytic Jacobian and
+   5-point differences at 40 random postures, and its sign on fixed feet.
 """
 import json
+import math
 import os
 import sys
 
 import numpy as np
+import pinocchio as pin
 from scipy.integrate import solve_ivp
 from scipy.interpolate import PchipInterpolator
 
@@ -754,7 +759,7 @@ def check_zone_angles():
             e[names.index(k)] = np.radians(v)
         # rows come in +/- pairs: fill the mirrored row
         pairs = [(0, 1), (2, 3), (4, 5), (8, 9), (11, 12), (13, 14), (15, 16), (17, 18), (19, 20),
-                 (21, 22)]
+                 (21, 22), (23, 24)]
         for i, j in pairs:
             if e[i] == 0 and e[j] != 0:
                 e[i] = -e[j]
@@ -782,7 +787,22 @@ def check_zone_angles():
     RT = _R("y", 30) @ _R("z", 20)
     expect("trunk flexed 30 + twist 20", Z.angles_from_frames(I, RT, I, down, down, 0.0, nowr),
            {"trunk inclination (forward)": 30, "trunk twist left": 20,
-            "neck flexion": -30})
+            "trunk turn against the feet left": 20, "neck flexion": -30})
+    # the same with feet given: the feet point 30 and 10 deg to the right (mean heading -20): the
+    # pelvis is turned 20 deg left against them, the turn is 20 + 20
+    fx = [_R("z", -30) @ [1.0, 0, 0], _R("z", -10) @ [1.0, 0, 0]]
+    expect("twist 20, feet at -30/-10", Z.angles_from_frames(I, RT, I, down, down, 0.0, nowr, fx),
+           {"trunk inclination (forward)": 30, "trunk twist left": 20,
+            "trunk turn against the feet left": 40, "neck flexion": -30})
+    # a foot whose x axis is vertical is left out: the other foot (heading +25) alone sets h
+    fx = [np.array([0.0, 0.0, 1.0]), _R("z", 25) @ _R("y", 40) @ [1.0, 0, 0]]
+    expect("one foot vertical, other heading 25", Z.angles_from_frames(I, I, I, down, down, 0.0, nowr, fx),
+           {"trunk turn against the feet right": 25})
+    # feet pointing opposite ways: |h| < 1e-9, the pelvis turn is 0 (the row is the twist)
+    fx = [np.array([1.0, 0, 0]), np.array([-1.0, 0, 0])]
+    expect("feet opposed", Z.angles_from_frames(I, RT, I, down, down, 0.0, nowr, fx),
+           {"trunk inclination (forward)": 30, "trunk twist left": 20,
+            "trunk turn against the feet left": 20, "neck flexion": -30})
     # the whole body turned 40 deg about the vertical (pelvis and trunk): nothing changes
     RP = _R("z", 40)
     expect("body turned 40", Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr), {})
@@ -823,7 +843,7 @@ def check_zone_angles():
     q[t.body.qidx["lumbar_axial_rotation"]] = np.radians(25)
     q[t.body.qidx["neck_axial_rotation"]] = np.radians(-30)
     expect("joints: lumbar twist 25, neck twist -30", zm.angles(q),
-           {"trunk twist left": 25, "neck twist right": 30})
+           {"trunk twist left": 25, "trunk turn against the feet left": 25, "neck twist right": 30})
     rec("zone angles on hand-built postures (max abs err, deg)",
         {"worst_deg": float(np.degrees(worst)), "cases": cases}, np.degrees(worst) < 1e-9)
 
@@ -836,8 +856,13 @@ def check_zone_angles():
         (np.degrees(L(300.0)[0]), 20.0), (np.degrees(L(200.0)[6]), 20.0),
         (np.degrees(L(10.0)[1]), 5.0), (np.degrees(L(10.0)[8]), 85.0),
         (np.degrees(L(10.0)[10]), 25.0), (np.degrees(L(10.0)[13]), 45.0),
-        (np.degrees(L(10.0)[15]), 15.0), (np.degrees(L(10.0)[17]), 10.0)]
+        (np.degrees(L(10.0)[15]), 15.0), (np.degrees(L(10.0)[17]), 10.0),
+        (np.degrees(L(10.0)[23]), 10.0), (np.degrees(L(10.0)[24]), 10.0),
+        (np.degrees(L(600.0)[23]), 10.0), (np.degrees(L(600.0)[24]), 10.0)]
     err = max(abs(a - b) for a, b in checks)
+    err = max(err, 0.0 if (len(L(10.0)) == Z.NROW == len(Z.ROW_NAMES) == 25 and
+                           Z.ROW_NAMES[23:] == ["trunk turn against the feet left",
+                                                "trunk turn against the feet right"]) else 1.0)
     # the upper-arm row (cos L - cos theta)/sin L: 0 at the limit, about theta - L near it
     th = np.radians(61.0)
     Lr = np.radians(60.0)
@@ -952,6 +977,166 @@ def check_gaze_and_zone_jacobians():
         worst_i < 1e-5 and worst_o < 1e-5 and e_obj < 1e-12)
 
 
+def _yaw(v):
+    return math.atan2(float(v[1]), float(v[0]))
+
+
+def _wrap_pi(a):
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+def check_turn_rows():
+    """Rows 24-25, the trunk's turn against the feet (statement of 2026-12-06), at 40 random
+    postures of each worker: (a) the value against an independent computation from Pinocchio
+    frame placements (twist from the matrix R_P^T R_T as atan2(R10 - R01, R00 + R11), the pelvis
+    turn as the yaw of the pelvis heading minus the circular mean of the feet's yaws; for an
+    upright trunk (pelvis_tilt, pelvis_list, lumbar_flexion, lumbar_lateral_bending 0) the yaw of the trunk minus
+    that mean); (b) the rows' Jacobian (rows_jac, central differences) against an analytic one
+    from the frames' angular Jacobians (LOCAL_WORLD_ALIGNED) and against 5-point differences;
+    (c) signs: the pelvis turned +theta (left) on fixed feet by pelvis_rotation with the hips'
+    rotations keeping both feet's yaw at 0 gives row 'left' = +theta; both hips rotated so the
+    feet turn left under a still pelvis gives 'right'."""
+    from reference import zones as Z
+    out = {}
+    worst_v, worst_up, worst_an, worst_fd = 0.0, 0.0, 0.0, 0.0
+    n_up = 0
+    for key, seed in (("shelf", 11), ("bench_assembly", 12)):
+        t = M.load_task(key)
+        b = t.body
+        zm = Z.ZoneModel(b)
+        m, d = zm.model, zm.data
+        assert m.nq == m.nv
+        L = M.Problem(t, zones=True).zone_limits[0]
+        rng = np.random.default_rng(seed)
+        upright = ("pelvis_tilt", "pelvis_list", "lumbar_flexion", "lumbar_lateral_bending")
+        assert all(j in b.qidx for j in upright)
+        upright = [j for j in upright if j in b.qidx]
+        for k in range(20):
+            q = b.lower + rng.random(b.nq) * (b.upper - b.lower)
+            q[b.qidx["pelvis_tz"]] = 0.9
+            up = k % 2 == 1
+            if up:
+                for j in upright:
+                    q[b.qidx[j]] = 0.0
+            th = zm.angles(q)
+            RP = d.oMf[zm.f_pelvis].rotation
+            RT = d.oMf[zm.f_trunk].rotation
+            R = RP.T @ RT
+            twist = math.atan2(R[1, 0] - R[0, 1], R[0, 0] + R[1, 1])
+            fyaw = [_yaw(d.oMf[f].rotation[:, 0]) for f in zm.f_feet]
+            mean_feet = math.atan2(sum(math.sin(a) for a in fyaw), sum(math.cos(a) for a in fyaw))
+            pturn = _wrap_pi(_yaw(RP[:, 0]) - mean_feet)
+            exp = twist + pturn
+            worst_v = max(worst_v, abs(_wrap_pi(th[23] - exp)), abs(th[23] + th[24]),
+                          abs(th[23] - th[4] - pturn))
+            if up:
+                n_up += 1
+                # the trunk's own heading against the feet: the same angle (mod 2 pi)
+                worst_up = max(worst_up, abs(_wrap_pi(th[23] - (_yaw(RT[:, 0]) - mean_feet))))
+            # Jacobians
+            g0, J = zm.rows_jac(q, L)
+            pin.computeJointJacobians(m, d, q)
+            pin.updateFramePlacements(m, d)
+            W = {}
+            for name, f in (("P", zm.f_pelvis), ("T", zm.f_trunk), ("r", zm.f_feet[0]),
+                            ("l", zm.f_feet[1])):
+                W[name] = pin.getFrameJacobian(m, d, f, pin.LOCAL_WORLD_ALIGNED)[3:]
+            # twist = atan2(s, c), s = R10 - R01, c = R00 + R11, dR = RP^T ([wT] - [wP]) RT
+            s_, c_ = R[1, 0] - R[0, 1], R[0, 0] + R[1, 1]
+            jt = np.zeros(b.nq)
+            jp = np.zeros(b.nq)
+            for i in range(b.nq):
+                dR = RP.T @ (pin.skew(W["T"][:, i]) - pin.skew(W["P"][:, i])) @ RT
+                ds, dc = dR[1, 0] - dR[0, 1], dR[0, 0] + dR[1, 1]
+                jt[i] = (c_ * ds - s_ * dc) / (s_ * s_ + c_ * c_)
+
+                def dyaw(x, w):
+                    dx = np.cross(w, x)
+                    return (x[0] * dx[1] - x[1] * dx[0]) / (x[0] ** 2 + x[1] ** 2)
+                xr, xl = d.oMf[zm.f_feet[0]].rotation[:, 0], d.oMf[zm.f_feet[1]].rotation[:, 0]
+                ur = np.array([xr[0], xr[1], 0.0]) / math.hypot(xr[0], xr[1])
+                ul = np.array([xl[0], xl[1], 0.0]) / math.hypot(xl[0], xl[1])
+                h = ur + ul
+                zc = np.array([0.0, 0.0, 1.0])
+                dh = dyaw(xr, W["r"][:, i]) * np.cross(zc, ur) + dyaw(xl, W["l"][:, i]) * np.cross(zc, ul)
+                dhy = (h[0] * dh[1] - h[1] * dh[0]) / (h[0] ** 2 + h[1] ** 2)
+                jp[i] = dyaw(RP[:, 0], W["P"][:, i]) - dhy
+            ja = jt + jp
+            worst_an = max(worst_an, float(np.max(np.abs(J[23] - ja))), float(np.max(np.abs(J[24] + ja))))
+            hh = 1e-4
+            for i in range(b.nq):
+                def fz(dx):
+                    qq = q.copy()
+                    qq[i] += dx
+                    return zm.rows(qq, L)[23:25]
+                dz = (-fz(2 * hh) + 8 * fz(hh) - 8 * fz(-hh) + fz(-2 * hh)) / (12 * hh)
+                worst_fd = max(worst_fd, float(np.max(np.abs(dz - J[23:25, i]))))
+    out.update(value_max_err_rad=worst_v, upright_trunk_yaw_max_err_rad=worst_up, n_upright=n_up,
+               jac_vs_analytic_max_err=worst_an, jac_vs_5point_max_err=worst_fd, n_postures=40)
+    ok = worst_v < 1e-12 and worst_up < 1e-9 and worst_an < 1e-6 and worst_fd < 1e-6
+    # signs on the male worker, legs straight
+    t = M.load_task("shelf")
+    b = t.body
+    zm = Z.ZoneModel(b)
+    theta = math.radians(20)
+    q = np.zeros(b.nq)
+    q[b.qidx["pelvis_tz"]] = 0.9
+    q[b.qidx["pelvis_rotation"]] = theta
+
+    def foot_yaw(qq, k):
+        zm.angles(qq)
+        return _yaw(zm.data.oMf[zm.f_feet[k]].rotation[:, 0])
+
+    hips = {}
+    for k, j in enumerate(("r_hip_rotation", "l_hip_rotation")):
+        # the hip rotation that brings this foot's yaw back to 0 (bisection on [-1, 1] rad)
+        lo, hi = -1.0, 1.0
+        flo = foot_yaw(np.where(np.arange(b.nq) == b.qidx[j], lo, q), k)
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            qq = q.copy()
+            qq[b.qidx[j]] = mid
+            fm = foot_yaw(qq, k)
+            if (fm > 0) == (flo > 0):
+                lo, flo = mid, fm
+            else:
+                hi = mid
+        hips[j] = 0.5 * (lo + hi)
+    for j, v in hips.items():
+        q[b.qidx[j]] = v
+    th = zm.angles(q)
+    feet_yaw = [foot_yaw(q, 0), foot_yaw(q, 1)]
+    s1 = dict(pelvis_rotation_deg=20.0, hips_deg={j: math.degrees(v) for j, v in hips.items()},
+              feet_yaw_deg=[math.degrees(a) for a in feet_yaw],
+              turn_left_deg=math.degrees(th[23]), turn_right_deg=math.degrees(th[24]),
+              twist_deg=math.degrees(th[4]))
+    ok1 = (max(abs(a) for a in feet_yaw) < 1e-9 and abs(math.degrees(th[23]) - 20) < 1e-6
+           and abs(th[4]) < 1e-12 and th[24] < 0)
+    # the pelvis still, right hip +theta, left hip -theta: on this model both feet then turn left
+    # (their yaw +theta), so the pelvis is turned theta to the RIGHT against them
+    q2 = np.zeros(b.nq)
+    q2[b.qidx["pelvis_tz"]] = 0.9
+    q2[b.qidx["r_hip_rotation"]] = theta
+    q2[b.qidx["l_hip_rotation"]] = -theta
+    th2 = zm.angles(q2)
+    fy2 = [foot_yaw(q2, 0), foot_yaw(q2, 1)]
+    s2 = dict(r_hip_rotation_deg=20.0, l_hip_rotation_deg=-20.0,
+              feet_yaw_deg=[math.degrees(a) for a in fy2],
+              turn_left_deg=math.degrees(th2[23]), turn_right_deg=math.degrees(th2[24]))
+    ok2 = abs(math.degrees(th2[24]) - 20) < 1e-6 and min(fy2) > 0
+    # plus a lumbar twist of 5 deg left on top of the first: the turn adds up to 25 left
+    q3 = q.copy()
+    q3[b.qidx["lumbar_axial_rotation"]] = math.radians(5)
+    th3 = zm.angles(q3)
+    s3 = dict(turn_left_deg=math.degrees(th3[23]), twist_deg=math.degrees(th3[4]))
+    ok3 = abs(math.degrees(th3[23]) - 25) < 1e-6 and abs(math.degrees(th3[4]) - 5) < 1e-6
+    out.update(sign_pelvis_turned_left_on_fixed_feet=s1, sign_hips_r_plus_l_minus=s2,
+               sign_plus_lumbar_twist_5=s3)
+    rec("turn against the feet (rows 24-25): values vs frame yaws at 40 random postures, "
+        "Jacobian vs analytic and 5-point differences, signs on fixed feet", out,
+        ok and ok1 and ok2 and ok3)
+
+
 if __name__ == "__main__":
     check_fatigue()
     check_fatigue_grad()
@@ -964,6 +1149,7 @@ if __name__ == "__main__":
     check_rotated_box()
     check_zone_angles()
     check_gaze_and_zone_jacobians()
+    check_turn_rows()
     here = os.path.dirname(os.path.abspath(__file__))
     out = os.path.join(here, "results", "verification.json")
     if "--out" in sys.argv:

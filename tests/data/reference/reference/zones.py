@@ -1,8 +1,13 @@
 """Acceptable posture zones and the gaze constraint (optimisation-problem.md section 4).
 
 Written from the statement only:
-  * 23 zone rows per phase posture, g_i = theta_i - L_i <= 0 (the upper-arm rows are
+  * 25 zone rows per phase posture, g_i = theta_i - L_i <= 0 (the upper-arm rows are
     (cos L - cos theta)/sin L, as the statement writes them), elastic with slack v_i >= 0;
+    rows 24-25 (statement of 2026-12-06): the trunk's turn against the feet = the trunk twist
+    (wrap(2 atan2(k, w)) of R_P^T R_T) + the pelvis's turn against the feet
+    atan2((h x f)_z, h.f), h = sum of the unit horizontal projections of the x axes of the links
+    r_foot and l_foot (a projection shorter than 1e-9 left out; the turn is 0 if |h| < 1e-9 or
+    the body has no such links); the sum is not wrapped (the statement does not wrap it);
   * limits from the phase's hold (run of consecutive phases of the same work: same targets, hand
     forces and gaze; across the cycle's end when the task has no rest); a posture shared by
     several phases takes the smallest limit per row;
@@ -31,9 +36,12 @@ ROW_NAMES = [
     "right wrist radial deviation", "right wrist ulnar deviation",
     "left wrist flexion", "left wrist extension",
     "left wrist radial deviation", "left wrist ulnar deviation",
+    "trunk turn against the feet left", "trunk turn against the feet right",
 ]
 NROW = len(ROW_NAMES)
 ARM_ROWS = (6, 7)
+TWIST_ROWS = (4, 5)
+TURN_ROWS = (23, 24)
 
 
 def _wrap(a):
@@ -56,7 +64,7 @@ def time_limit(t_min, T20, T60):
 
 
 def limits_for_hold(hold_s):
-    """The 23 limits [rad] for a hold of hold_s seconds (a hold <= 4 s is a movement: the
+    """The 25 limits [rad] for a hold of hold_s seconds (a hold <= 4 s is a movement: the
     trunk and arm limits are then 60 deg, the same value the formula gives for t <= 1 min)."""
     t = hold_s / 60.0
     if hold_s <= 4.0:
@@ -77,6 +85,7 @@ def limits_for_hold(hold_s):
         10 * DEG, 10 * DEG,
         15 * DEG, 15 * DEG,
         10 * DEG, 10 * DEG,
+        10 * DEG, 10 * DEG,     # trunk turned against the feet: 10 deg each way
     ])
     return L
 
@@ -90,6 +99,10 @@ class ZoneModel:
         fid = m.getFrameId
         self.f_pelvis, self.f_trunk, self.f_head = fid("pelvis"), fid("trunk"), fid("head")
         self.f_arm = {s: (fid(f"{s}_upper_arm"), fid(f"{s}_forearm")) for s in ("r", "l")}
+        # the feet (the turn against the feet is 0 for a body without these links)
+        self.f_feet = [fid(n) for n in ("r_foot", "l_foot") if m.existFrame(n)]
+        if len(self.f_feet) != 2:
+            self.f_feet = []
         q = body.qidx
         self.i_neck_twist = q["neck_axial_rotation"]
         self.i_wrist = {s: (q[f"{s}_wrist_flexion"], q[f"{s}_wrist_deviation"]) for s in ("r", "l")}
@@ -108,8 +121,12 @@ class ZoneModel:
         pin.forwardKinematics(self.model, self.data, q)
         pin.updateFramePlacements(self.model, self.data)
 
+    def feet_x(self):
+        """World x axes of the links r_foot and l_foot (after _fk); [] without them."""
+        return [self.data.oMf[f].rotation[:, 0].copy() for f in self.f_feet]
+
     def angles(self, q):
-        """The 23 signed angles theta_i [rad] in row order (row sign applied; arm rows: theta)."""
+        """The 25 signed angles theta_i [rad] in row order (row sign applied; arm rows: theta)."""
         self._fk(q)
         d = self.data
         arms = []
@@ -120,7 +137,7 @@ class ZoneModel:
         wr = [(q[self.i_wrist[s][0]], q[self.i_wrist[s][1]]) for s in ("r", "l")]
         return angles_from_frames(d.oMf[self.f_pelvis].rotation, d.oMf[self.f_trunk].rotation,
                                   d.oMf[self.f_head].rotation, arms[0], arms[1],
-                                  q[self.i_neck_twist], wr)
+                                  q[self.i_neck_twist], wr, feet_x=self.feet_x())
 
     def raw(self, q):
         """The unsigned named quantities, for reports and checks [rad]."""
@@ -128,7 +145,8 @@ class ZoneModel:
         return dict(trunk_inclination=t[0], trunk_side_bending=t[2], trunk_twist=t[4],
                     r_upper_arm=t[6], l_upper_arm=t[7], head_inclination=t[8], neck_flexion=t[10],
                     neck_side_bending=t[11], neck_twist=t[13], r_wrist_flexion=t[15],
-                    r_wrist_deviation=t[17], l_wrist_flexion=t[19], l_wrist_deviation=t[21])
+                    r_wrist_deviation=t[17], l_wrist_flexion=t[19], l_wrist_deviation=t[21],
+                    trunk_turn_against_feet=t[23], pelvis_turn_against_feet=t[23] - t[4])
 
     def rows(self, q, L):
         """g_i(q) = theta_i - L_i (arm rows (cos L - cos theta)/sin L)."""
@@ -149,8 +167,8 @@ class ZoneModel:
             gp = self.rows(qp, L)
             gm = self.rows(qm, L)
             dg = gp - gm
-            # twist rows: guard the wrap at +-pi
-            for r in (4, 5):
+            # twist and turn rows: guard the wrap at +-pi (of the twist and of the pelvis turn)
+            for r in TWIST_ROWS + TURN_ROWS:
                 dg[r] = _wrap(dg[r])
             J[:, i] = dg / (2 * h)
         return g0, J
@@ -184,9 +202,26 @@ class ZoneModel:
         return v0, J
 
 
-def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists):
+def pelvis_turn(f, feet_x):
+    """The pelvis's turn against the feet: atan2((h x f)_z, h.f), h the sum of the unit
+    horizontal projections of the feet's x axes (one shorter than 1e-9 left out); 0 if
+    |h| < 1e-9 or there are no feet. Positive: the pelvis heading f turned to the left of h."""
+    h = np.zeros(3)
+    for x in feet_x:
+        p = np.array(x, float)
+        p[2] = 0.0
+        n = np.linalg.norm(p)
+        if n >= 1e-9:
+            h += p / n
+    if np.linalg.norm(h) < 1e-9:
+        return 0.0
+    return math.atan2(float(h[0] * f[1] - h[1] * f[0]), float(h @ f))
+
+
+def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists, feet_x=()):
     """The statement's formulas from the world rotations of pelvis, trunk and head, the vectors
-    upper-arm origin -> forearm origin, the neck twist joint and (flexion, deviation) per wrist."""
+    upper-arm origin -> forearm origin, the neck twist joint, (flexion, deviation) per wrist and
+    the world x axes of the links r_foot, l_foot (none: the turn against the feet is the twist)."""
     z = np.array([0.0, 0.0, 1.0])
     f = np.array(RP[:, 0], float)
     f[2] = 0.0
@@ -220,8 +255,10 @@ def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists):
     wr = []
     for fl, dv in wrists:
         wr += [fl, -fl, dv, -dv]
+    turn = twist + pelvis_turn(f, feet_x)
     return np.array([th_trunk, -th_trunk, side, -side, twist, -twist, arms[0], arms[1],
-                     head_incl, -head_incl, neck_flex, neck_side, -neck_side, nt, -nt] + wr)
+                     head_incl, -head_incl, neck_flex, neck_side, -neck_side, nt, -nt] + wr
+                    + [turn, -turn])
 
 
 def phase_holds(task):
