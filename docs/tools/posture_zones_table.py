@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The shipped tasks planned within ISO 11226 / EN 1005-4's acceptable zones (the default) and
 without them (`--no-zones`), held plans (docs/results.md, "Acceptable posture zones"): total
-fatigue U, the largest trunk twist, RULA and REBA, converged phases, the EN 1005-4 and ISO 11226
+fatigue U, the largest trunk twist and turn against the feet, RULA and REBA, converged phases, the EN 1005-4 and ISO 11226
 criteria and the shift verdict, and the zones the targets force the posture beyond.
 
     cargo build --release && python3 docs/tools/posture_zones_table.py
@@ -22,6 +22,8 @@ def run(task, extra):
     return dict(
         u=d["summary"]["total_u"],
         twist=max(abs(p["angles"]["trunk_twist_deg"]) for p in a["phases"] if p.get("angles")),
+        turn=max(abs(p["angles"]["trunk_twist_deg"] + p["angles"]["pelvis_turn_deg"])
+                 for p in a["phases"] if p.get("angles")),
         rula=a["rula_max"], reba=a["reba_max"],
         converged=f"{sum(p['converged'] for p in phases)}/{len(phases)}",
         iso=crit.get("iso_11226"), en=crit.get("en_1005_4"),
@@ -32,12 +34,12 @@ def run(task, extra):
 
 
 def cells(r):
-    return (f"{r['u']:.2f}, {r['twist']:.0f}°, {r['rula']}, {r['reba']}, {r['converged']}, "
+    return (f"{r['u']:.2f}, {r['twist']:.0f}° / {r['turn']:.0f}°, {r['rula']}, {r['reba']}, {r['converged']}, "
             f"{r['iso']} / {r['en']}, {r['verdict']}")
 
 
 def main():
-    print("| task | without zones: U [min], twist, RULA, REBA, converged, ISO 11226 / EN 1005-4, "
+    print("| task | without zones: U [min], twist / turn against the feet, RULA, REBA, converged, ISO 11226 / EN 1005-4, "
           "verdict | within zones (default): the same |")
     print("|---|---|---|")
     forced = []

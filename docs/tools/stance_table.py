@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The shipped tasks planned with the feet fixed and with a standing area (docs/results.md,
-"Stepping and turning"): total fatigue U, the largest trunk twist, RULA and REBA, steps per
+"Stepping and turning"): total fatigue U, the largest trunk twist and turn against the feet, RULA and REBA, steps per
 cycle, converged phases and the shift verdict.
 
     cargo build --release && python3 docs/tools/stance_table.py
@@ -30,6 +30,8 @@ def run(task, text):
     return dict(
         u=d["summary"]["total_u"],
         twist=max(abs(p["angles"]["trunk_twist_deg"]) for p in a["phases"]),
+        turn=max(abs(p["angles"]["trunk_twist_deg"] + p["angles"]["pelvis_turn_deg"])
+                 for p in a["phases"]),
         rula=a["rula_max"], reba=a["reba_max"],
         steps=sum(p["feet"]["steps"] for p in phases if p.get("feet")),
         converged=f"{sum(p['converged'] for p in phases)}/{len(phases)}",
@@ -38,7 +40,7 @@ def run(task, text):
 
 
 def main():
-    print("| task | feet fixed: U [min], twist, RULA, REBA, verdict | standing area: U [min], twist, "
+    print("| task | feet fixed: U [min], twist / turn, RULA, REBA, verdict | standing area: U [min], twist / turn, "
           "RULA, REBA, steps per cycle, converged phases, verdict |")
     print("|---|---|---|")
     for t in TASKS:
@@ -47,8 +49,8 @@ def main():
         fixed_text = "\n".join(l for l in text.splitlines() if not l.startswith("stance:")) + "\n"
         placed_text = text if shipped_area else text + "\n" + AREA + "\n"
         f, p = run(t, fixed_text), run(t, placed_text)
-        print(f"| {t} | {f['u']:.2f}, {f['twist']:.0f}°, {f['rula']}, {f['reba']}, {f['verdict']} | "
-              f"{p['u']:.2f}, {p['twist']:.0f}°, {p['rula']}, {p['reba']}, {p['steps']}, "
+        print(f"| {t} | {f['u']:.2f}, {f['twist']:.0f}° / {f['turn']:.0f}°, {f['rula']}, {f['reba']}, {f['verdict']} | "
+              f"{p['u']:.2f}, {p['twist']:.0f}° / {p['turn']:.0f}°, {p['rula']}, {p['reba']}, {p['steps']}, "
               f"{p['converged']}, {p['verdict']} |", flush=True)
 
 

@@ -37,7 +37,7 @@ for t in tasks:
     if not os.path.exists(p):
         continue
     r = json.load(open(p))
-    sus = sorted(d["objective"] for d in r["joint_local_optima"] if not d["exhausted"])
+    sus = sorted(d["objective"] for d in r["joint_local_optima"] if d.get("exhausted") is False)
     n = len(sus)
     med = (sus[n // 2] if n % 2 else 0.5 * (sus[n // 2 - 1] + sus[n // 2])) if n else None
     rows = next(iter(r["zone_angles_deg"].values()))
