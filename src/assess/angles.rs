@@ -64,8 +64,9 @@ pub struct BodyAngles {
     pub left: ArmAngles,
     pub right_knee_flexion_deg: f64,
     pub left_knee_flexion_deg: f64,
-    /// The pelvis's heading against the feet's (their mean heading on the floor), toward the left
-    /// positive: the turn the hips make on planted feet (the hips' rotations, for an ergonomist).
+    /// The pelvis's heading (square to its hip axis) against the feet's (their mean heading on
+    /// the floor), toward the left positive: the turn the hips make on planted feet (the hips'
+    /// rotations, for an ergonomist).
     pub pelvis_turn_deg: f64,
     pub both_feet_bear_weight: bool,
     /// The body sits on a seat: set by the caller that knows the supports ([`Self::measure`]
@@ -206,8 +207,14 @@ impl BodyAngles {
         .filter_map(|name| model.frame_link(name).ok())
         .filter_map(|l| heading(&data.link_pose(model, l).0).try_normalize(1e-9))
         .sum();
+        // the pelvis's heading from its hip axis, which a stoop (a tilt about that axis) leaves
+        // level
+        let y = r_pelvis * Vector3::y();
+        let hips = Vector3::new(y.x, y.y, 0.0)
+            .try_normalize(1e-9)
+            .map_or(fwd, |y| y.cross(&Vector3::z()));
         let pelvis_turn_deg = if feet.norm() > 1e-9 {
-            deg(feet.cross(&fwd).z.atan2(feet.dot(&fwd)))
+            deg(feet.cross(&hips).z.atan2(feet.dot(&hips)))
         } else {
             0.0
         };
