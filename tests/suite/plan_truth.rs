@@ -572,6 +572,7 @@ fn time_to_exhaustion_is_the_cycle_by_cycle_replay() {
     use posture_opt::assess::meaning::meaning;
     let dir = tempfile::tempdir().unwrap();
     let cases = [
+        (9.0, 60.0, 2.0),
         (6.0, 40.0, 2.0),
         (4.0, 20.0, 4.0),
         (3.0, 12.0, 6.0),

@@ -44,7 +44,7 @@ GROUPS = {
 
 class Search:
     def __init__(self, key, budget, log=print, n_random=16, resume=None, seed_offset=0,
-                 zones=False, checkpoint=None, checkpoint_every=100.0):
+                 zones=False, checkpoint=None, checkpoint_every=100.0, rerun_joint=False):
         self.key = key
         self.t = M.load_task(key)
         self.zones = zones
@@ -66,6 +66,7 @@ class Search:
         self.resume = resume
         self.seed_offset = seed_offset
         self.prev_runtime = 0.0
+        self.rerun_joint = rerun_joint
 
     # --- helpers --------------------------------------------------------------------------------
     def elapsed(self):
@@ -327,7 +328,18 @@ class Search:
             for g_i, g in enumerate(t.groups):
                 for d in pool.get(g["name"], []):
                     self.phase_pool[g_i].append((self.b.q_from_dict(d["posture"]), d["label"]))
-        ok = self.offer(qs, origins, f"previous run ({prev.get('best_objective', prev['best_total_u_min']):.10g})")
+        if self.rerun_joint:
+            # the previous run's whole-plan local optima were found (and valued) under an earlier
+            # statement: drop them, relabel their starts and pool postures "prev:joint:<family>",
+            # so that stage 1 solves every seed family again under the current rows
+            self.joint_optima = []
+            self.starts = ["prev:" + s if s.startswith("joint:") else s for s in self.starts]
+            for gi in range(t.P):
+                self.phase_pool[gi] = [(q, "prev:" + lab if lab.startswith("joint:") else lab)
+                                       for q, lab in self.phase_pool[gi]]
+        # the previous best plan is re-evaluated here with the current code (offer ->
+        # plan_total); the stored objective is only printed
+        ok = self.offer(qs, origins, f"previous run (stored {prev.get('best_objective', prev['best_total_u_min']):.10g})")
         if not ok:
             raise RuntimeError("previous best plan is not feasible")
         for gi in range(t.P):
@@ -501,6 +513,10 @@ def main():
                     help="posture zones (elastic) and gaze on; objective ln(U + 1e-3) + 10 sum v; "
                          "results go to results_zones/ unless --out is given")
     ap.add_argument("--checkpoint-every", type=float, default=100.0)
+    ap.add_argument("--rerun-joint", action="store_true",
+                    help="with --resume: drop the previous run's whole-plan local optima (relabel "
+                         "their starts and pool postures prev:joint:<family>) and solve every "
+                         "joint seed family again (for a resume after the statement changed)")
     ap.add_argument("--pool-swap-only", action="store_true",
                     help="only apply the final pool swap (Search.pool_swap) to an existing result "
                          "and its .pool.json (--out or results/TASK.json), then rewrite both")
@@ -541,7 +557,8 @@ def main():
         log(f"   checkpoint written ({srch.elapsed():.0f} s, best {srch.best['U']:.10g})")
 
     s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset,
-               zones=a.zones, checkpoint=checkpoint, checkpoint_every=a.checkpoint_every)
+               zones=a.zones, checkpoint=checkpoint, checkpoint_every=a.checkpoint_every,
+               rerun_joint=a.rerun_joint)
     S.PROGRESS_HOOK = s.maybe_checkpoint
     if a.pool_swap_only:
         with open(out) as fh:

@@ -16,8 +16,9 @@
 5. NLP Jacobians (hands, feet, torque identity, clearances, balance) vs finite differences;
 6. distances vs brute-force sampling;
 8. posture zones (25 rows) and gaze: angles on hand-built postures, limits, holds, Jacobians;
-   the trunk's turn against the feet (rows 24-25) vs frame yaws, an analytic Jacobian and
-   5-point differences at 40 random postures, and its sign on fixed feet.
+   the trunk's turn against the feet (rows 24-25; the pelvis heading from its hip axis) vs
+   frame yaws, an analytic Jacobian and 5-point differences at 40 random postures, its sign on
+   fixed feet, and tilted pelvises (a stoop about the hip axis turns nothing).
 """
 import json
 import math
@@ -824,6 +825,46 @@ def check_zone_angles():
                                           [(np.radians(17), np.radians(-8)), (np.radians(-25), np.radians(6))]),
            {"right wrist flexion": 17, "right wrist radial deviation": -8, "left wrist flexion": -25,
             "left wrist radial deviation": 6})
+    # pelvis heading from the hip axis (statement of 2026-12-06, second revision): the pelvis
+    # (and trunk and head with it) tilted 60 deg forward about its hip axis, feet straight ahead:
+    # trunk and head inclination 60, no turn
+    RP = _R("y", 60)
+    fx0 = [np.array([1.0, 0, 0]), np.array([1.0, 0, 0])]
+    expect("pelvis tilted 60, feet ahead", Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr, fx0),
+           {"trunk inclination (forward)": 60, "head inclination (forward)": 60})
+    # the same pelvis turned 25 deg left on the feet (R_P = Rz(25) Ry(60)): turn left 25
+    RP = _R("z", 25) @ _R("y", 60)
+    expect("pelvis tilted 60 turned 25, feet ahead", Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr, fx0),
+           {"trunk inclination (forward)": 60, "head inclination (forward)": 60,
+            "trunk turn against the feet left": 25})
+    # ... and without foot links the pelvis's turn is 0: the row is the twist (0)
+    expect("pelvis tilted 60 turned 25, no feet", Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr),
+           {"trunk inclination (forward)": 60, "head inclination (forward)": 60})
+    # turn-row-only cases (the other rows use the x-axis heading f and are checked above):
+    turn_cases = []
+    # the worker's pelvis chain Rz(rotation) Rx(-list) Ry(tilt): listed 20 deg, tilted 60 deg, turned
+    # theta = -35 deg on feet at +10/+10: the hip axis gives theta - 10 = -45 (the x axis would give
+    # theta + atan(sin 20 tan 60) - 10 = -14.4); the trunk twisted a further 15 deg left: -30
+    RP = _R("z", -35) @ _R("x", 20) @ _R("y", 60)
+    fx10 = [_R("z", 10) @ [1.0, 0, 0]] * 2
+    th_ = Z.angles_from_frames(RP, RP @ _R("z", 15), RP, down, down, 0.0, nowr, fx10)
+    turn_cases.append(("listed 20, tilted 60, turned -35 on feet at +10, twist +15", th_[23], th_[24], -30.0))
+    # tilted 90 deg (its x axis vertical, f falls back to world x): the hip axis still gives theta
+    RP = _R("z", 40) @ _R("y", 90)
+    th_ = Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr, fx0)
+    turn_cases.append(("tilted 90, turned 40, feet ahead", th_[23], th_[24], 40.0))
+    # listed 90 deg (the hip axis vertical): g falls back to f = the x axis's heading (-20)
+    RP = _R("z", -20) @ _R("x", 90)
+    th_ = Z.angles_from_frames(RP, RP, RP, down, down, 0.0, nowr, fx0)
+    turn_cases.append(("listed 90 (hip axis vertical), heading -20, feet ahead", th_[23], th_[24], -20.0))
+    for label, left, right, exp_deg in turn_cases:
+        err = max(abs(left - np.radians(exp_deg)), abs(right + np.radians(exp_deg)))
+        worst = max(worst, err)
+        cases.append((label, np.degrees(err)))
+    g = Z.hip_axis_heading(_R("z", 30) @ _R("x", -20) @ _R("y", 75), np.array([1.0, 0, 0]))
+    err = float(np.max(np.abs(g - np.array([np.cos(np.radians(30)), np.sin(np.radians(30)), 0.0]))))
+    worst = max(worst, err)
+    cases.append(("hip_axis_heading of Rz(30) Rx(-20) Ry(75) = (cos 30, sin 30, 0)", np.degrees(err)))
     # the same from joint space: lumbar_flexion 30 deg only on the worker
     t = M.load_task("shelf")
     zm = Z.ZoneModel(t.body)
@@ -991,11 +1032,14 @@ def check_turn_rows():
     frame placements (twist from the matrix R_P^T R_T as atan2(R10 - R01, R00 + R11), the pelvis
     turn as the yaw of the pelvis heading minus the circular mean of the feet's yaws; for an
     upright trunk (pelvis_tilt, pelvis_list, lumbar_flexion, lumbar_lateral_bending 0) the yaw of the trunk minus
-    that mean); (b) the rows' Jacobian (rows_jac, central differences) against an analytic one
+    that mean; the pelvis heading's yaw is the yaw of R_P y minus 90 deg, the hip-axis heading); (b) the rows' Jacobian (rows_jac, central differences) against an analytic one
     from the frames' angular Jacobians (LOCAL_WORLD_ALIGNED) and against 5-point differences;
     (c) signs: the pelvis turned +theta (left) on fixed feet by pelvis_rotation with the hips'
     rotations keeping both feet's yaw at 0 gives row 'left' = +theta; both hips rotated so the
-    feet turn left under a still pelvis gives 'right'."""
+    feet turn left under a still pelvis gives 'right'; (d) the worker's pelvis tilted 60 deg and
+    listed 20 deg, legs straight: pelvis turn = pelvis_rotation - the feet's mean yaw (exact for
+    the hip-axis heading, since R_P = Rz(rotation) Rx(-list) Ry(tilt)) = atan(sin 20 tan 60) (the
+    feet follow the pelvis's x axis; the x-axis heading of before gave 0, reported)."""
     from reference import zones as Z
     out = {}
     worst_v, worst_up, worst_an, worst_fd = 0.0, 0.0, 0.0, 0.0
@@ -1025,7 +1069,8 @@ def check_turn_rows():
             twist = math.atan2(R[1, 0] - R[0, 1], R[0, 0] + R[1, 1])
             fyaw = [_yaw(d.oMf[f].rotation[:, 0]) for f in zm.f_feet]
             mean_feet = math.atan2(sum(math.sin(a) for a in fyaw), sum(math.cos(a) for a in fyaw))
-            pturn = _wrap_pi(_yaw(RP[:, 0]) - mean_feet)
+            # the pelvis heading from its hip axis: the yaw of R_P y minus 90 deg
+            pturn = _wrap_pi(_yaw(RP[:, 1]) - math.pi / 2 - mean_feet)
             exp = twist + pturn
             worst_v = max(worst_v, abs(_wrap_pi(th[23] - exp)), abs(th[23] + th[24]),
                           abs(th[23] - th[4] - pturn))
@@ -1060,7 +1105,7 @@ def check_turn_rows():
                 zc = np.array([0.0, 0.0, 1.0])
                 dh = dyaw(xr, W["r"][:, i]) * np.cross(zc, ur) + dyaw(xl, W["l"][:, i]) * np.cross(zc, ul)
                 dhy = (h[0] * dh[1] - h[1] * dh[0]) / (h[0] ** 2 + h[1] ** 2)
-                jp[i] = dyaw(RP[:, 0], W["P"][:, i]) - dhy
+                jp[i] = dyaw(RP[:, 1], W["P"][:, i]) - dhy
             ja = jt + jp
             worst_an = max(worst_an, float(np.max(np.abs(J[23] - ja))), float(np.max(np.abs(J[24] + ja))))
             hh = 1e-4
@@ -1130,11 +1175,37 @@ def check_turn_rows():
     th3 = zm.angles(q3)
     s3 = dict(turn_left_deg=math.degrees(th3[23]), twist_deg=math.degrees(th3[4]))
     ok3 = abs(math.degrees(th3[23]) - 25) < 1e-6 and abs(math.degrees(th3[4]) - 5) < 1e-6
+    # (d) tilted pelvis on the worker: pelvis_tilt 60, pelvis_list 20, pelvis_rotation theta in
+    # {0, 20, -35} deg, lumbar and legs straight: the pelvis's turn is theta minus the feet's
+    # circular mean yaw (measured); the feet follow the pelvis's x axis here (legs straight), whose
+    # yaw is theta - atan(sin 20 tan 60), so the turn is atan(sin 20 tan 60) = 30.642 deg for every
+    # theta, where the x-axis heading of before gave 0
+    s4 = []
+    ok4 = True
+    for th_deg in (0.0, 20.0, -35.0):
+        q4 = np.zeros(b.nq)
+        q4[b.qidx["pelvis_tz"]] = 0.9
+        q4[b.qidx["pelvis_tilt"]] = math.radians(60)
+        q4[b.qidx["pelvis_list"]] = math.radians(20)
+        q4[b.qidx["pelvis_rotation"]] = math.radians(th_deg)
+        th4 = zm.angles(q4)
+        fy = [foot_yaw(q4, 0), foot_yaw(q4, 1)]
+        mf = math.atan2(sum(math.sin(a) for a in fy), sum(math.cos(a) for a in fy))
+        exp4 = _wrap_pi(math.radians(th_deg) - mf)
+        RP4 = zm.data.oMf[zm.f_pelvis].rotation
+        xaxis = _wrap_pi(_yaw(RP4[:, 0]) - mf)
+        e4 = abs(th4[23] - exp4)
+        s4.append(dict(pelvis_rotation_deg=th_deg, feet_yaw_deg=[math.degrees(a) for a in fy],
+                       turn_left_deg=math.degrees(th4[23]), expected_deg=math.degrees(exp4),
+                       twist_deg=math.degrees(th4[4]), x_axis_heading_would_give_deg=math.degrees(xaxis)))
+        e4 = max(e4, abs(th4[23] - math.atan(math.sin(math.radians(20)) * math.tan(math.radians(60)))))
+        ok4 = ok4 and e4 < 1e-12 and abs(th4[4]) < 1e-12
     out.update(sign_pelvis_turned_left_on_fixed_feet=s1, sign_hips_r_plus_l_minus=s2,
-               sign_plus_lumbar_twist_5=s3)
-    rec("turn against the feet (rows 24-25): values vs frame yaws at 40 random postures, "
-        "Jacobian vs analytic and 5-point differences, signs on fixed feet", out,
-        ok and ok1 and ok2 and ok3)
+               sign_plus_lumbar_twist_5=s3, tilted_listed_pelvis=s4)
+    rec("turn against the feet (rows 24-25, pelvis heading from the hip axis): values vs frame "
+        "yaws at 40 random postures, Jacobian vs analytic and 5-point differences, signs on "
+        "fixed feet, a tilted and listed pelvis", out,
+        ok and ok1 and ok2 and ok3 and ok4)
 
 
 if __name__ == "__main__":

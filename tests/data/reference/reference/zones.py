@@ -3,11 +3,14 @@
 Written from the statement only:
   * 25 zone rows per phase posture, g_i = theta_i - L_i <= 0 (the upper-arm rows are
     (cos L - cos theta)/sin L, as the statement writes them), elastic with slack v_i >= 0;
-    rows 24-25 (statement of 2026-12-06): the trunk's turn against the feet = the trunk twist
-    (wrap(2 atan2(k, w)) of R_P^T R_T) + the pelvis's turn against the feet
-    atan2((h x f)_z, h.f), h = sum of the unit horizontal projections of the x axes of the links
-    r_foot and l_foot (a projection shorter than 1e-9 left out; the turn is 0 if |h| < 1e-9 or
-    the body has no such links); the sum is not wrapped (the statement does not wrap it);
+    rows 24-25 (statement of 2026-12-06, pelvis heading from the hip axis since its second
+    revision that day): the trunk's turn against the feet = the trunk twist (wrap(2 atan2(k, w))
+    of R_P^T R_T) + the pelvis's turn against the feet atan2((h x g)_z, h.g), h = sum of the unit
+    horizontal projections of the x axes of the links r_foot and l_foot (a projection shorter
+    than 1e-9 left out; the pelvis's turn is 0 if |h| < 1e-9 or the body has no such links, so
+    the row is the twist), g = the pelvis's heading from its hip axis: (R_P y with its z dropped,
+    normalised) x z (f, the other rows' pelvis heading, if that projection is shorter than
+    1e-9); the sum is not wrapped (the statement says so);
   * limits from the phase's hold (run of consecutive phases of the same work: same targets, hand
     forces and gaze; across the cycle's end when the task has no rest); a posture shared by
     several phases takes the smallest limit per row;
@@ -202,10 +205,24 @@ class ZoneModel:
         return v0, J
 
 
-def pelvis_turn(f, feet_x):
-    """The pelvis's turn against the feet: atan2((h x f)_z, h.f), h the sum of the unit
-    horizontal projections of the feet's x axes (one shorter than 1e-9 left out); 0 if
-    |h| < 1e-9 or there are no feet. Positive: the pelvis heading f turned to the left of h."""
+def hip_axis_heading(RP, f):
+    """The pelvis's heading from its hip axis: g = (R_P y with its z dropped, normalised) x z;
+    f (the x-axis heading) if that projection is shorter than 1e-9. A tilt about the hip axis
+    (a stoop) leaves g level and unchanged."""
+    y = np.array(RP[:, 1], float)
+    y[2] = 0.0
+    n = np.linalg.norm(y)
+    if n < 1e-9:
+        return np.array(f, float)
+    y /= n
+    return np.array([y[1], -y[0], 0.0])   # y x z
+
+
+def pelvis_turn(g, feet_x):
+    """The pelvis's turn against the feet: atan2((h x g)_z, h.g), g the pelvis's heading from its
+    hip axis (hip_axis_heading), h the sum of the unit horizontal projections of the feet's x
+    axes (one shorter than 1e-9 left out); 0 if |h| < 1e-9 or there are no feet. Positive: the
+    pelvis heading g turned to the left of h."""
     h = np.zeros(3)
     for x in feet_x:
         p = np.array(x, float)
@@ -215,7 +232,7 @@ def pelvis_turn(f, feet_x):
             h += p / n
     if np.linalg.norm(h) < 1e-9:
         return 0.0
-    return math.atan2(float(h[0] * f[1] - h[1] * f[0]), float(h @ f))
+    return math.atan2(float(h[0] * g[1] - h[1] * g[0]), float(h @ g))
 
 
 def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists, feet_x=()):
@@ -255,7 +272,7 @@ def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists, feet_x=()):
     wr = []
     for fl, dv in wrists:
         wr += [fl, -fl, dv, -dv]
-    turn = twist + pelvis_turn(f, feet_x)
+    turn = twist + pelvis_turn(hip_axis_heading(RP, f), feet_x)   # not wrapped
     return np.array([th_trunk, -th_trunk, side, -side, twist, -twist, arms[0], arms[1],
                      head_incl, -head_incl, neck_flex, neck_side, -neck_side, nt, -nt] + wr
                     + [turn, -turn])
