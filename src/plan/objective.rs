@@ -387,7 +387,11 @@ pub struct Discomfort {
 /// the turn cost the neck nothing the fatigue term sees).
 pub fn displacement_weight(joint: &str) -> f64 {
     match joint {
-        "lumbar_lateral_bending" | "lumbar_axial_rotation" | "neck_axial_rotation" => 10.0,
+        "lumbar_lateral_bending"
+        | "lumbar_axial_rotation"
+        | "neck_axial_rotation"
+        | "r_hip_rotation"
+        | "l_hip_rotation" => 10.0,
         "lumbar_flexion" => 3.0,
         j if j.starts_with("neck_") => 3.0,
         _ => 1.0,
