@@ -124,14 +124,14 @@ fn the_planners_zone_angles_are_the_assessments() {
         };
         for k in 0..q.len() {
             let (d1, d2) = (central(k, 1e-4), central(k, 5e-5));
-            for i in 0..ZONE_ROWS {
+            for (i, row) in grad.iter().enumerate() {
                 let fd = (4.0 * d2[i] - d1[i]) / 3.0;
                 assert!(
-                    (fd - grad[i][k]).abs() < 1e-5 * (1.0 + fd.abs()),
+                    (fd - row[k]).abs() < 1e-5 * (1.0 + fd.abs()),
                     "row {i} ({:?}), joint {}: {} against {fd}",
                     Zone::ALL[i],
                     t.model.q_joint(k).name,
-                    grad[i][k]
+                    row[k]
                 );
             }
         }
