@@ -388,7 +388,11 @@ pub struct Discomfort {
 /// rotation turns the pelvis on planted feet: at weight 1 the plans turned the pelvis 20° one way
 /// and the lumbar spine 10° the other within the zones' turn against the feet (shelf_high's
 /// 'carry'), and which of such near-ties a plan took moved its total 1.4 % with the QP's
-/// precision.
+/// precision. The forearm's rotation three times: a hand target gives no hand orientation, so at
+/// weight 1 a plan could hold a box with the forearm supinated 65° and the wrist flexed to its
+/// 15° zone edge or with both neutral for about the same fatigue (shelf_high's 'place low
+/// board'; the QP's precision picked one, 0.026 apart in the objective); people keep the forearm
+/// near its mid-position (ASSUMPTION, as the neck's bending).
 pub fn displacement_weight(joint: &str) -> f64 {
     match joint {
         "lumbar_lateral_bending"
@@ -396,6 +400,7 @@ pub fn displacement_weight(joint: &str) -> f64 {
         | "neck_axial_rotation"
         | "r_hip_rotation"
         | "l_hip_rotation" => 10.0,
+        "r_forearm_pronation" | "l_forearm_pronation" => 3.0,
         "lumbar_flexion" => 3.0,
         j if j.starts_with("neck_") => 3.0,
         _ => 1.0,
