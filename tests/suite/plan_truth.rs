@@ -260,34 +260,6 @@ fn planning_is_deterministic() {
     assert_eq!(a.summary.phases[0].q_rad, b.summary.phases[0].q_rad);
 }
 
-/// A task whose plan the planner issue's bounds do not yet hold, and the bounds measured instead
-/// (docs/results.md, "The QP's precision" and "Stability"): a regression beyond them still fails.
-struct KnownMiss {
-    task: &'static str,
-    /// Objective difference allowed between the QP's two precisions.
-    objective: f64,
-    /// Relative change of the total allowed (precision, seed order, 1 mm).
-    total: f64,
-}
-
-const KNOWN_MISSES: &[KnownMiss] = &[
-    // the zones' excesses (arm, head tilted back to look at the drill) dominate the objective;
-    // near-ties of 0.04° of excess against 0.8 % of fatigue; a target 1 mm forward: 1.1 %
-    KnownMiss {
-        task: "overhead_drilling",
-        objective: 5e-3,
-        total: 0.015,
-    },
-    // 'lift from pallet' holds the right plantarflexors at 81 %MVC, where U is steep: the right
-    // arm raised 62° or 68° (the QP's precision or a target 1 mm away picks one) is 1.7 % of the
-    // total (measured 2026-12-05, with the trunk extensors weakening in a stoop)
-    KnownMiss {
-        task: "pallet_raised",
-        objective: 0.015,
-        total: 0.025,
-    },
-];
-
 /// Settings that only change the QP solver's precision must not change the plan's objective by
 /// more than 0.005 (its fatigue term is ln of the total: 0.5 %), its total fatigue by more than
 /// 0.5 % (the planner issue's bound),
@@ -295,8 +267,6 @@ const KNOWN_MISSES: &[KnownMiss] = &[
 /// And no baseline the plan reports reaches a lower objective than the plan (issue 37.5); and the
 /// seeds screened in reverse order, or the first phase's work moved 1 mm forward, move the
 /// total by at most 0.5 % and flip no verdict (37.3).
-/// The known misses ([`KNOWN_MISSES`], docs/results.md) are held to their measured bounds, and
-/// the verdicts to not flipping.
 #[test]
 fn the_solvers_precision_does_not_decide_the_plan() {
     let names = [
@@ -386,15 +356,12 @@ fn solver_precision_does_not_decide(name: &str) -> Vec<String> {
             ),
         );
     }
-    let miss = KNOWN_MISSES.iter().find(|m| m.task == name);
     // the objective's fatigue term is ln of the total: 0.005 is 0.5 % of it, the issue's bound
     let d_j = (ja - jb).abs();
-    let j_bound = miss.map_or(5e-3, |m| m.objective);
     check(
-        d_j <= j_bound,
+        d_j <= 5e-3,
         format!("{name}: objective {ja} vs {jb} at the QP's two precisions (difference {d_j:.1e})"),
     );
-    let total_bound = miss.map_or(5e-3, |m| m.total);
     let verdict = |p: &Plan| posture_opt::assess::assess(&task, p, 0.7).verdict.status;
     let verdict_a = verdict(&a);
     // the total within the bound, and the same shift verdict
@@ -405,7 +372,7 @@ fn solver_precision_does_not_decide(name: &str) -> Vec<String> {
             other.summary.total_u, a.summary.total_u
         );
         check(
-            rel <= total_bound,
+            rel <= 5e-3,
             format!(
                 "{name}: total U {} {what} vs {} (relative {rel:.1e})",
                 other.summary.total_u, a.summary.total_u
