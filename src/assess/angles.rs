@@ -110,15 +110,7 @@ impl BodyAngles {
         let (r_trunk, p_trunk) = data.link_pose(model, trunk);
         let (r_head, _) = data.link_pose(model, head);
         // The body's horizontal frame: forward = the pelvis's x on the floor.
-        let fwd = {
-            let x = r_pelvis * Vector3::x();
-            let h = Vector3::new(x.x, x.y, 0.0);
-            if h.norm() > 1e-9 {
-                h.normalize()
-            } else {
-                Vector3::x()
-            }
-        };
+        let fwd = crate::body::heading::pelvis_forward(&r_pelvis);
         let left = Vector3::z().cross(&fwd);
         let t_axis = r_trunk * Vector3::z();
         let trunk_flexion_deg = deg(t_axis.dot(&fwd).atan2(t_axis.z));
@@ -193,31 +185,16 @@ impl BodyAngles {
         let right = arm("r_", -1.0)?;
         let left_arm = arm("l_", 1.0)?;
         let (rk, lk) = (joint("r_knee_flexion")?, joint("l_knee_flexion")?);
-        // the feet's mean heading on the floor, and the pelvis's against it
-        let heading = |r: &nalgebra::Matrix3<f64>| {
-            let x = r * Vector3::x();
-            Vector3::new(x.x, x.y, 0.0)
-        };
-        // (a body without the worker's foot links has no feet to turn against: 0)
-        let feet: Vector3<f64> = [
+        // the pelvis's heading against the feet's (a body without the worker's foot links has no
+        // feet to turn against: 0)
+        let feet = [
             crate::body::worker::RIGHT_FOOT_LINK,
             crate::body::worker::LEFT_FOOT_LINK,
         ]
         .iter()
         .filter_map(|name| model.frame_link(name).ok())
-        .filter_map(|l| heading(&data.link_pose(model, l).0).try_normalize(1e-9))
-        .sum();
-        // the pelvis's heading from its hip axis, which a stoop (a tilt about that axis) leaves
-        // level
-        let y = r_pelvis * Vector3::y();
-        let hips = Vector3::new(y.x, y.y, 0.0)
-            .try_normalize(1e-9)
-            .map_or(fwd, |y| y.cross(&Vector3::z()));
-        let pelvis_turn_deg = if feet.norm() > 1e-9 {
-            deg(feet.cross(&hips).z.atan2(feet.dot(&hips)))
-        } else {
-            0.0
-        };
+        .map(|l| data.link_pose(model, l).0);
+        let pelvis_turn_deg = deg(crate::body::heading::pelvis_turn_rad(&r_pelvis, feet));
         Ok(BodyAngles {
             trunk_flexion_deg,
             trunk_side_bend_deg,

@@ -6,6 +6,7 @@
 //! produces positive torque about the joint) and `JOINT-`.
 
 pub mod head;
+pub mod heading;
 pub mod model;
 pub mod report;
 pub mod seat;

@@ -316,13 +316,7 @@ impl Frames {
         let (r_pelvis, _) = data.link_pose(model, f.pelvis);
         let (r_trunk, _) = data.link_pose(model, f.trunk);
         let (r_head, _) = data.link_pose(model, f.head);
-        let x = r_pelvis * Vector3::x();
-        let h = Vector3::new(x.x, x.y, 0.0);
-        let fwd = if h.norm() > 1e-9 {
-            h.normalize()
-        } else {
-            Vector3::x()
-        };
+        let fwd = crate::body::heading::pelvis_forward(&r_pelvis);
         let left = Vector3::z().cross(&fwd);
         let a = r_trunk * Vector3::z();
         let trunk = a.dot(&fwd).atan2(a.z);
@@ -330,26 +324,8 @@ impl Frames {
         let rel = nalgebra::UnitQuaternion::from_matrix(&(r_pelvis.transpose() * r_trunk));
         let twist = crate::body::stance::wrap_pi(2.0 * rel.k.atan2(rel.w));
         // the pelvis's heading against the feet's mean heading (0 without the feet's links)
-        let feet: Vector3<f64> = f
-            .feet
-            .iter()
-            .flatten()
-            .filter_map(|&l| {
-                let x = data.link_pose(model, l).0 * Vector3::x();
-                Vector3::new(x.x, x.y, 0.0).try_normalize(1e-9)
-            })
-            .sum();
-        // the pelvis's heading from its hip axis, which a stoop (a tilt about that axis) leaves
-        // level
-        let y = r_pelvis * Vector3::y();
-        let hips = Vector3::new(y.x, y.y, 0.0)
-            .try_normalize(1e-9)
-            .map_or(fwd, |y| y.cross(&Vector3::z()));
-        let pelvis_turn = if feet.norm() > 1e-9 {
-            feet.cross(&hips).z.atan2(feet.dot(&hips))
-        } else {
-            0.0
-        };
+        let feet = f.feet.iter().flatten().map(|&l| data.link_pose(model, l).0);
+        let pelvis_turn = crate::body::heading::pelvis_turn_rad(&r_pelvis, feet);
         let turn = twist + pelvis_turn;
         let h = crate::body::head::HeadAngles::measure(&r_trunk, &r_head);
         let (head, neck, neck_side) = (h.inclination_rad, h.neck_flexion_rad, h.neck_side_bend_rad);
