@@ -137,7 +137,7 @@ pub struct Lift {
 }
 
 /// Stance on both feet.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StanceFile {
     /// Distance between the sole centres \[m\]; default the worker's shoulder width
@@ -836,13 +836,7 @@ impl Task {
             }
             None
         } else {
-            let sf = f.stance.clone().unwrap_or(StanceFile {
-                width_m: None,
-                forward_m: 0.0,
-                toe_out_deg: 0.0,
-                feet: None,
-                area_m: None,
-            });
+            let sf = f.stance.clone().unwrap_or_default();
             let feet_names = sf
                 .feet
                 .clone()

@@ -1,14 +1,23 @@
-//! What would change the plan: the phase that matters most, re-planned with its hands' target
-//! moved toward the worker's elbow height — the height the ergonomics literature recommends for
-//! handling — and the whole task planned again with the same options, so that the report can say
-//! in numbers what a workstation change would do ("raising the pallet 10 cm lowers …").
+//! What would change the plan: workstation changes, each planned again by posture-opt with the
+//! same options, so that the report can say in numbers what the change would do ("raising the
+//! pallet 10 cm lowers …").
 //!
-//! The phase: the one with the highest L5/S1 compression when a phase exceeds NIOSH's action
-//! limit, else the one whose posture the targets force farthest beyond the acceptable zones
-//! (ISO 11226 / EN 1005-4, summed excess), else the one where the group whose capacity falls
-//! lowest holds its highest load. The comparison gives the zones' summed excess first. The
-//! move: toward standing elbow height (0.630 × stature, Drillis & Contini 1966), by at most
-//! [`MAX_MOVE_M`]; no what-if when the target is already within [`NEAR_ELBOW_M`] of it.
+//! **The work moved.** The phase that matters most, re-planned with its hands' target moved
+//! toward the worker's elbow height — the height the ergonomics literature recommends for
+//! handling. The phase: the one with the highest L5/S1 compression when a phase exceeds NIOSH's
+//! action limit, else the one whose posture the targets force farthest beyond the acceptable
+//! zones (ISO 11226 / EN 1005-4, summed excess), else the one where the group whose capacity
+//! falls lowest holds its highest load. The move: toward standing elbow height (0.630 ×
+//! stature, Drillis & Contini 1966), by at most [`MAX_MOVE_M`]; no such what-if when the target
+//! is already within [`NEAR_ELBOW_M`] of it.
+//!
+//! **The worker free to step.** When the task fixes the feet of a standing worker, the task
+//! planned again with the feet placed by the planner within a standing area around the task's
+//! stance, [`STANDING_AREA_HALF_SIDE_M`] each way: real workers pivot or step rather than twist
+//! (HUMOSIM's stepping studies, SAE 2006-01-2364 and 2007-01-2478), and with the feet fixed
+//! the work to the side is reached by turning the trunk and the head.
+//!
+//! The comparison gives the zones' summed excess first.
 
 use crate::assess::{Assessment, assess};
 use crate::plan::{Plan, PlanError, PlanOptions, Task, plan_task_with};
@@ -24,6 +33,13 @@ pub const NEAR_ELBOW_M: f64 = 0.05;
 /// Standing elbow height as a fraction of stature (Drillis & Contini 1966).
 pub const ELBOW_HEIGHT_PER_STATURE: f64 = 0.630;
 
+/// Half the side of the square standing area of the stepping what-if, centred on the task's
+/// stance \[m\]: ASSUMPTION, about a metre across, one step in any direction (a normal
+/// step is about 0.4 × stature long, Dean 1965 via Winter, Biomechanics and Motor Control of
+/// Human Movement, 4th ed., Table 1.1 gait data), which leaves the turns of the shipped tasks'
+/// side transfers room; a workstation with less floor declares its own area (`stance.area_m`).
+pub const STANDING_AREA_HALF_SIDE_M: f64 = 0.5;
+
 /// The figures of one plan that the what-if compares.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Figures {
@@ -33,6 +49,8 @@ pub struct Figures {
     pub back_compression_max_n: Option<f64>,
     pub capable_women: f64,
     pub exhausted: bool,
+    /// Steps per cycle (the phases' steps from the state before each).
+    pub steps_per_cycle: u32,
     /// The postures' excess beyond ISO 11226 / EN 1005-4's acceptable zones, summed over the
     /// cycle's phases and zones \[deg\] (`phases[].outside_zones`).
     pub zone_excess_deg: f64,
@@ -81,6 +99,12 @@ impl Figures {
             100.0 * self.capable_women,
             100.0 * after.capable_women
         ));
+        if self.steps_per_cycle > 0 || after.steps_per_cycle > 0 {
+            v.push(format!(
+                "steps per cycle {} → {}",
+                self.steps_per_cycle, after.steps_per_cycle
+            ));
+        }
         if after.exhausted && !self.exhausted {
             v.push("but a muscle group is then exhausted within the task".into());
         }
@@ -88,17 +112,46 @@ impl Figures {
     }
 }
 
+/// A workstation change.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Change {
+    /// A phase's work (and every phase doing the same work) moved toward elbow height.
+    MoveWork {
+        phase: String,
+        /// Vertical move of the phase's hand targets (and held object) \[m\], + up.
+        dz_m: f64,
+        elbow_height_m: f64,
+    },
+    /// The feet, fixed in the task, placed by the planner within a square standing area
+    /// centred on the task's stance.
+    StandingArea {
+        /// Half the square's side \[m\].
+        half_side_m: f64,
+    },
+}
+
 /// A workstation change and what it does.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WhatIf {
-    pub phase: String,
-    /// Vertical move of the phase's hand targets (and held object) \[m\], + up.
-    pub dz_m: f64,
-    pub elbow_height_m: f64,
+    pub change: Change,
     pub before: Figures,
     pub after: Figures,
     /// What makes the changed task impossible as planned (then the change is not advised).
     pub problems: Vec<String>,
+    /// The changed plan's phases whose solve stopped short of convergence: its figures are
+    /// those of the plan the optimiser stopped at (a finished plan may do better).
+    pub not_converged: Vec<String>,
+}
+
+/// The plan's phases whose solve did not converge.
+fn not_converged(plan: &Plan) -> Vec<String> {
+    plan.summary
+        .phases
+        .iter()
+        .filter(|p| !p.converged)
+        .map(|p| p.phase.clone())
+        .collect()
 }
 
 fn figures(plan: &Plan, a: &Assessment) -> Figures {
@@ -113,6 +166,12 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
         back_compression_max_n: a.back_compression_max_n,
         capable_women: a.capable_women,
         exhausted: s.exhaustion.is_some(),
+        steps_per_cycle: s
+            .phases
+            .iter()
+            .filter_map(|p| p.feet.as_ref())
+            .map(|f| f.steps)
+            .sum(),
         zone_excess_deg: zone_excess_deg(plan),
     }
 }
@@ -205,18 +264,86 @@ pub fn what_if(
             }
         }
     }
+    let change = Change::MoveWork {
+        phase: ph.name.clone(),
+        dz_m: dz,
+        elbow_height_m: elbow,
+    };
+    plan_changed(change, &changed, plan, a, opts, floor).map(Some)
+}
+
+/// Plans the changed task with `opts` (without baselines) and compares it with `plan`.
+fn plan_changed(
+    change: Change,
+    changed: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<WhatIf, PlanError> {
     let opts = PlanOptions {
         baselines: false,
         ..opts
     };
-    let plan2 = plan_task_with(&changed, opts)?;
-    let a2 = assess(&changed, &plan2, floor);
-    Ok(Some(WhatIf {
-        phase: ph.name.clone(),
-        dz_m: dz,
-        elbow_height_m: elbow,
+    let plan2 = plan_task_with(changed, opts)?;
+    let a2 = assess(changed, &plan2, floor);
+    Ok(WhatIf {
+        change,
         before: figures(plan, a),
         after: figures(&plan2, &a2),
         problems: plan2.problems(),
-    }))
+        not_converged: not_converged(&plan2),
+    })
+}
+
+/// The task planned again with the worker free to step and turn within a square standing area
+/// of half-side [`STANDING_AREA_HALF_SIDE_M`] centred on its stance, with `opts` (without
+/// baselines), and compared. `None` unless the task fixes the feet of a standing worker (a
+/// seated worker, a task that gives its own standing area, a body without feet), or when the
+/// area cannot hold the task's stance.
+pub fn with_standing_area(
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<Option<WhatIf>, PlanError> {
+    let standing = task
+        .stance
+        .as_ref()
+        .is_some_and(|s| s.placement.is_none() && s.seat.is_none());
+    if !standing {
+        return Ok(None);
+    }
+    let mut file = task.source.clone();
+    let h = STANDING_AREA_HALF_SIDE_M;
+    let stance = file.stance.get_or_insert_with(Default::default);
+    let x0 = stance.forward_m;
+    stance.area_m = Some(vec![[x0 - h, -h], [x0 + h, -h], [x0 + h, h], [x0 - h, h]]);
+    // the area holds every stance the task format accepts but the widest: then no what-if
+    let Ok(changed) = Task::from_task_file(file, &task.path) else {
+        return Ok(None);
+    };
+    let change = Change::StandingArea { half_side_m: h };
+    plan_changed(change, &changed, plan, a, opts, floor).map(Some)
+}
+
+/// Every what-if of the plan: the work moved ([`what_if`]) and the worker free to step
+/// ([`with_standing_area`]), those that apply, the one that lowers fatigue per hour most first.
+pub fn what_ifs(
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<Vec<WhatIf>, PlanError> {
+    let mut v: Vec<WhatIf> = [
+        what_if(task, plan, a, opts, floor)?,
+        with_standing_area(task, plan, a, opts, floor)?,
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    v.sort_by(|x, y| x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min));
+    Ok(v)
 }

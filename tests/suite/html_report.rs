@@ -81,7 +81,7 @@ fn plan_html() -> &'static str {
     static H: OnceLock<String> = OnceLock::new();
     H.get_or_init(|| {
         let p = planned();
-        plan_report(&p.task, &p.plan, &p.assessment, None).unwrap()
+        plan_report(&p.task, &p.plan, &p.assessment, &[]).unwrap()
     })
 }
 

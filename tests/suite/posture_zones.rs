@@ -20,6 +20,7 @@ use posture_opt::plan::zones::{
     ARM_HOLD_MIN, TRUNK_HOLD_MIN, ZONE_ROWS, Zone, ZoneLimits, ZoneWork, acceptable_angle_deg,
 };
 use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
+use posture_opt::study::what_if::Change;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
@@ -410,8 +411,11 @@ fn what_would_change_it_moves_the_phase_forced_farthest_beyond_a_zone() {
     let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
         .unwrap()
         .expect("a forced excess is a reason to move the work");
-    assert_eq!(w.phase, "drill hole");
-    assert!(w.dz_m < 0.0);
+    let Change::MoveWork { phase, dz_m, .. } = &w.change else {
+        panic!("{:?}", w.change)
+    };
+    assert_eq!(phase, "drill hole");
+    assert!(*dz_m < 0.0);
     assert!((w.before.zone_excess_deg - (excess(0) + excess(1))).abs() < 1e-9);
     assert!(
         w.after.zone_excess_deg < w.before.zone_excess_deg,

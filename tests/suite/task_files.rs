@@ -3,6 +3,7 @@
 //! the nearest posture and the plan says so.
 
 use crate::common;
+use posture_opt::study::what_if::Change;
 
 use common::{tempdir, write};
 use nalgebra::{Point3, Vector3};
@@ -752,9 +753,17 @@ fn what_if_moves_the_work_toward_elbow_height_and_replans() {
     let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
         .unwrap()
         .expect("a target 0.41 m below elbow height is moved");
-    assert_eq!(w.phase, "hold");
-    assert!((w.elbow_height_m - 0.630 * 1.755).abs() < 1e-12);
-    assert!((w.dz_m - 0.10).abs() < 1e-12, "{}", w.dz_m);
+    let Change::MoveWork {
+        phase,
+        dz_m,
+        elbow_height_m,
+    } = &w.change
+    else {
+        panic!("{:?}", w.change)
+    };
+    assert_eq!(phase, "hold");
+    assert!((elbow_height_m - 0.630 * 1.755).abs() < 1e-12);
+    assert!((dz_m - 0.10).abs() < 1e-12, "{dz_m}");
     // the same change by hand (0.70 + 0.10 is not 0.80 in binary: the two plans agree to the
     // optimiser's tolerance, not bit for bit)
     let moved = BASE
@@ -778,6 +787,66 @@ fn what_if_moves_the_work_toward_elbow_height_and_replans() {
     let a3 = posture_opt::assess::assess(&t3, &p3, 0.7);
     assert!(
         posture_opt::study::what_if::what_if(&t3, &p3, &a3, opts, 0.7)
+            .unwrap()
+            .is_none()
+    );
+}
+
+/// The stepping what-if: a task that fixes the feet is planned again with the feet placed within
+/// a 1 m square around the stance — the same plan as the task with that `stance.area_m` written
+/// by hand. A task that gives its own standing area, or seats the worker, gets none.
+#[test]
+fn what_if_lets_the_worker_step_within_a_metre_square_and_replans() {
+    // work 0.45 m to the left at hip height: with the feet fixed the trunk turns toward it
+    let side = BASE
+        .replace("[0.35, -0.2, 1.0]", "[0.10, 0.45, 0.95]")
+        .replace("cycles: 10", "cycles: 3");
+    let t = Task::from_yaml_str(&side, std::path::Path::new("side.yaml")).unwrap();
+    let opts = PlanOptions {
+        baselines: false,
+        ..Default::default()
+    };
+    let p = plan_task_with(&t, opts).unwrap();
+    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let w = posture_opt::study::what_if::with_standing_area(&t, &p, &a, opts, 0.7)
+        .unwrap()
+        .expect("the task fixes the feet of a standing worker");
+    assert_eq!(w.change, Change::StandingArea { half_side_m: 0.5 });
+    assert_eq!(w.before.steps_per_cycle, 0, "fixed feet take no step");
+    // the same area by hand
+    let area =
+        format!("{side}stance: {{area_m: [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]}}\n");
+    let t2 = Task::from_yaml_str(&area, std::path::Path::new("area.yaml")).unwrap();
+    let p2 = plan_task_with(&t2, opts).unwrap();
+    let per_hour = p2.summary.total_u / (p2.summary.duration_s / 3600.0);
+    assert!(
+        (w.after.u_per_hour_min - per_hour).abs() <= 1e-9 * per_hour.max(1.0),
+        "{} vs {per_hour}",
+        w.after.u_per_hour_min
+    );
+    let steps: u32 = p2
+        .summary
+        .phases
+        .iter()
+        .map(|x| x.feet.as_ref().unwrap().steps)
+        .sum();
+    assert_eq!(w.after.steps_per_cycle, steps);
+    // a task with its own area, and a seated one: no stepping what-if
+    let a2 = posture_opt::assess::assess(&t2, &p2, 0.7);
+    assert!(
+        posture_opt::study::what_if::with_standing_area(&t2, &p2, &a2, opts, 0.7)
+            .unwrap()
+            .is_none()
+    );
+    let seated = Task::from_file(format!(
+        "{}/tasks/bench_seated.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    assert!(seated.stance.as_ref().unwrap().seat.is_some());
+    // (the plan is not read: a seated task has no stepping what-if whatever was planned)
+    assert!(
+        posture_opt::study::what_if::with_standing_area(&seated, &p, &a, opts, 0.7)
             .unwrap()
             .is_none()
     );

@@ -45,8 +45,8 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     })?;
     out.add("--report", &a.assess.report, || {
         // the report's "what would change it": the task planned again with the hardest phase
-        // moved toward elbow height
-        let what_if = posture_opt::study::what_if::what_if(
+        // moved toward elbow height, and with the worker free to step
+        let what_ifs = posture_opt::study::what_if::what_ifs(
             &task,
             &plan,
             &assessment,
@@ -55,7 +55,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         )
         .map_err(|e| anyhow::anyhow!(e))?;
         Ok(
-            posture_opt::report::html::plan_report(&task, &plan, &assessment, what_if.as_ref())
+            posture_opt::report::html::plan_report(&task, &plan, &assessment, &what_ifs)
                 .map_err(lib_err)?
                 .into_bytes(),
         )

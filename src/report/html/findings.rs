@@ -736,17 +736,39 @@ pub fn findings(
     f
 }
 
-/// "What would change it", from the what-if plan the tool ran.
+/// "What would change it", from a what-if plan the tool ran.
 pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
-    let way = if w.dz_m > 0.0 { "up" } else { "down" };
-    let head = format!(
-        "<b>What would change it</b> (the task planned again by posture-opt): placing the work of {} {} {way}, toward this worker’s elbow height ({}), ",
-        q(&w.phase),
-        mm(w.dz_m.abs()),
-        super::fmt::unit(w.elbow_height_m, 2, "m")
-    );
+    use crate::study::what_if::Change;
+    let change = match &w.change {
+        Change::MoveWork {
+            phase,
+            dz_m,
+            elbow_height_m,
+        } => format!(
+            "placing the work of {} {} {}, toward this worker’s elbow height ({}), ",
+            q(phase),
+            mm(dz_m.abs()),
+            if *dz_m > 0.0 { "up" } else { "down" },
+            super::fmt::unit(*elbow_height_m, 2, "m")
+        ),
+        Change::StandingArea { half_side_m } => format!(
+            "letting the worker step and turn within {} × {} of floor around the stance (the task fixes the feet), ",
+            super::fmt::unit(2.0 * half_side_m, 1, "m"),
+            super::fmt::unit(2.0 * half_side_m, 1, "m")
+        ),
+    };
+    let head =
+        format!("<b>What would change it</b> (the task planned again by posture-opt): {change}");
     let text = if w.problems.is_empty() {
-        format!("changes {}", w.before.changes_to(&w.after).join("; "))
+        let mut t = format!("changes {}", w.before.changes_to(&w.after).join("; "));
+        if !w.not_converged.is_empty() {
+            let names: Vec<String> = w.not_converged.iter().map(|p| format!("'{p}'")).collect();
+            t += &format!(
+                " (the optimiser stopped short of convergence on {} of the changed plan: these are the figures of the plan it stopped at, and a finished plan may do better)",
+                names.join(", ")
+            );
+        }
+        t
     } else {
         format!("cannot be done as planned: {}", w.problems.join("; "))
     };

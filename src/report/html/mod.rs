@@ -48,15 +48,15 @@ fn document(title: &str, body: &str) -> String {
 }
 
 /// The report of one plan and its assessment.
-/// `what_if`: a workstation change the tool planned ([`crate::study::what_if`]), reported as
-/// "what would change it".
+/// `what_ifs`: workstation changes the tool planned ([`crate::study::what_if`]), each reported
+/// as "what would change it".
 pub fn plan_report(
     task: &Task,
     plan: &Plan,
     a: &Assessment,
-    what_if: Option<&crate::study::what_if::WhatIf>,
+    what_ifs: &[crate::study::what_if::WhatIf],
 ) -> Result<String, ReportError> {
-    let body = plan_page::body(task, plan, a, what_if)?;
+    let body = plan_page::body(task, plan, a, what_ifs)?;
     Ok(document(&format!("Plan: {}", plan.task), &body))
 }
 

@@ -989,7 +989,7 @@ pub fn body(
     task: &Task,
     plan: &Plan,
     a: &Assessment,
-    what_if: Option<&crate::study::what_if::WhatIf>,
+    what_ifs: &[crate::study::what_if::WhatIf],
 ) -> Result<String, ReportError> {
     let n = task.phases.len().min(plan.summary.phases.len());
     let strain = phase_strain(task, plan);
@@ -1016,8 +1016,8 @@ pub fn body(
     let mut v = findings::verdict(plan, a);
     let mut f: Vec<Finding> = findings::findings(task, plan, a, &strain, &courses, worst);
     f.insert(0, findings::criteria_finding(a));
-    if let Some(w) = what_if {
-        f.insert(1.min(f.len()), findings::what_if_finding(w));
+    for (i, w) in what_ifs.iter().enumerate() {
+        f.insert((1 + i).min(f.len()), findings::what_if_finding(w));
     }
     // a fatigue verdict that is fine does not hide the problems found otherwise
     let problems = f.iter().filter(|x| x.level == Level::Bad).count();
