@@ -329,7 +329,8 @@ pub fn with_standing_area(
 }
 
 /// Every what-if of the plan: the work moved ([`what_if`]) and the worker free to step
-/// ([`with_standing_area`]), those that apply, the one that lowers fatigue per hour most first.
+/// ([`with_standing_area`]), those that apply: those that can be done as planned first, and
+/// among them the one that lowers fatigue per hour most.
 pub fn what_ifs(
     task: &Task,
     plan: &Plan,
@@ -344,6 +345,10 @@ pub fn what_ifs(
     .into_iter()
     .flatten()
     .collect();
-    v.sort_by(|x, y| x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min));
+    v.sort_by(|x, y| {
+        (!x.problems.is_empty())
+            .cmp(&!y.problems.is_empty())
+            .then(x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min))
+    });
     Ok(v)
 }
