@@ -34,10 +34,10 @@ pub const NEAR_ELBOW_M: f64 = 0.05;
 pub const ELBOW_HEIGHT_PER_STATURE: f64 = 0.630;
 
 /// Half the side of the square standing area of the stepping what-if, centred on the task's
-/// stance \[m\]: ASSUMPTION, about a metre across, one step in any direction (a normal
-/// step is about 0.4 × stature long, Dean 1965 via Winter, Biomechanics and Motor Control of
-/// Human Movement, 4th ed., Table 1.1 gait data), which leaves the turns of the shipped tasks'
-/// side transfers room; a workstation with less floor declares its own area (`stance.area_m`).
+/// stance \[m\]: ASSUMPTION, a square about a metre across (as the stance table of
+/// docs/results.md plans every shipped task), one short step in any direction from the stance; no
+/// standard gives the floor a worker at a station may use, so a workstation with less floor
+/// declares its own area (`stance.area_m`).
 pub const STANDING_AREA_HALF_SIDE_M: f64 = 0.5;
 
 /// The figures of one plan that the what-if compares.
