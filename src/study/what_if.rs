@@ -345,10 +345,65 @@ pub fn what_ifs(
     .into_iter()
     .flatten()
     .collect();
+    rank(&mut v);
+    Ok(v)
+}
+
+/// Orders what-ifs for the report: those that can be done as planned first, then by fatigue per
+/// hour after the change, lowest first.
+fn rank(v: &mut [WhatIf]) {
     v.sort_by(|x, y| {
         (!x.problems.is_empty())
             .cmp(&!y.problems.is_empty())
             .then(x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min))
     });
-    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn figures(u_per_hour_min: f64) -> Figures {
+        Figures {
+            u_per_hour_min,
+            lowest_capacity: 0.5,
+            back_compression_max_n: None,
+            capable_women: 0.5,
+            exhausted: false,
+            steps_per_cycle: 0,
+            zone_excess_deg: 0.0,
+        }
+    }
+
+    fn what_if(dz_m: f64, after_u: f64, problem: bool) -> WhatIf {
+        WhatIf {
+            change: Change::MoveWork {
+                phase: format!("{dz_m}"),
+                dz_m,
+                elbow_height_m: 1.1,
+            },
+            before: figures(100.0),
+            after: figures(after_u),
+            problems: if problem {
+                vec!["collision".into()]
+            } else {
+                vec![]
+            },
+            not_converged: vec![],
+        }
+    }
+
+    /// A change that cannot be done as planned comes last however low its fatigue; the others
+    /// by fatigue per hour after the change.
+    #[test]
+    fn doable_changes_first_then_the_least_fatigue() {
+        let mut v = vec![
+            what_if(0.1, 50.0, true),
+            what_if(0.2, 90.0, false),
+            what_if(0.3, 60.0, false),
+        ];
+        rank(&mut v);
+        let order: Vec<f64> = v.iter().map(|w| w.after.u_per_hour_min).collect();
+        assert_eq!(order, [60.0, 90.0, 50.0]);
+    }
 }

@@ -735,6 +735,26 @@ cycles: 2
     }
 }
 
+/// A task from `text` planned as the report plans its what-ifs (no baselines), and assessed.
+fn planned_for_what_if(
+    text: &str,
+    name: &str,
+) -> (
+    Task,
+    posture_opt::plan::Plan,
+    posture_opt::assess::Assessment,
+    PlanOptions,
+) {
+    let t = Task::from_yaml_str(text, std::path::Path::new(name)).unwrap();
+    let opts = PlanOptions {
+        baselines: false,
+        ..Default::default()
+    };
+    let p = plan_task_with(&t, opts).unwrap();
+    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    (t, p, a, opts)
+}
+
 /// The report's "what would change it": the hardest phase's target moved toward elbow height
 /// (0.630 × stature) by at most 10 cm and the task planned again. Checked against the same change
 /// made by hand in the task file and planned here.
@@ -743,13 +763,7 @@ fn what_if_moves_the_work_toward_elbow_height_and_replans() {
     let low = BASE
         .replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 0.70]")
         .replace("cycles: 10", "cycles: 3");
-    let t = Task::from_yaml_str(&low, std::path::Path::new("low.yaml")).unwrap();
-    let opts = PlanOptions {
-        baselines: false,
-        ..Default::default()
-    };
-    let p = plan_task_with(&t, opts).unwrap();
-    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let (t, p, a, opts) = planned_for_what_if(&low, "low.yaml");
     let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
         .unwrap()
         .expect("a target 0.41 m below elbow height is moved");
@@ -801,13 +815,7 @@ fn what_if_lets_the_worker_step_within_a_metre_square_and_replans() {
     let side = BASE
         .replace("[0.35, -0.2, 1.0]", "[0.10, 0.45, 0.95]")
         .replace("cycles: 10", "cycles: 3");
-    let t = Task::from_yaml_str(&side, std::path::Path::new("side.yaml")).unwrap();
-    let opts = PlanOptions {
-        baselines: false,
-        ..Default::default()
-    };
-    let p = plan_task_with(&t, opts).unwrap();
-    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let (t, p, a, opts) = planned_for_what_if(&side, "side.yaml");
     let w = posture_opt::study::what_if::with_standing_area(&t, &p, &a, opts, 0.7)
         .unwrap()
         .expect("the task fixes the feet of a standing worker");
