@@ -40,6 +40,11 @@ pub const ELBOW_HEIGHT_PER_STATURE: f64 = 0.630;
 /// declares its own area (`stance.area_m`).
 pub const STANDING_AREA_HALF_SIDE_M: f64 = 0.5;
 
+/// A change the report's verdict recommends lowers fatigue per hour by at least this fraction:
+/// ASSUMPTION, a change an ergonomist would act on, twenty times the 0.5 % the plan's total may
+/// move with solver noise (the stability tests' bound); smaller gains stay among the findings.
+pub const ADVISE_FRACTION: f64 = 0.10;
+
 /// The figures of one plan that the what-if compares.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Figures {
@@ -142,6 +147,23 @@ pub struct WhatIf {
     /// The changed plan's phases whose solve stopped short of convergence: its figures are
     /// those of the plan the optimiser stopped at (a finished plan may do better).
     pub not_converged: Vec<String>,
+}
+
+impl WhatIf {
+    /// Whether the report's verdict recommends the change: it can be done as planned, every
+    /// phase of its plan converged, it exhausts no muscle group the plan did not, and it lowers
+    /// fatigue per hour by at least [`ADVISE_FRACTION`].
+    pub fn advised(&self) -> bool {
+        self.problems.is_empty()
+            && self.not_converged.is_empty()
+            && (!self.after.exhausted || self.before.exhausted)
+            && self.after.u_per_hour_min <= (1.0 - ADVISE_FRACTION) * self.before.u_per_hour_min
+    }
+}
+
+/// The change the report's verdict recommends: the first advised one of the ranked what-ifs.
+pub fn advice(v: &[WhatIf]) -> Option<&WhatIf> {
+    v.iter().find(|w| w.advised())
 }
 
 /// The plan's phases whose solve did not converge.
@@ -405,5 +427,33 @@ mod tests {
         rank(&mut v);
         let order: Vec<f64> = v.iter().map(|w| w.after.u_per_hour_min).collect();
         assert_eq!(order, [60.0, 90.0, 50.0]);
+    }
+
+    /// The verdict recommends the first ranked change that is doable, finished, exhausts no
+    /// group and lowers fatigue per hour by at least a tenth; none when no change does.
+    #[test]
+    fn advice_is_the_first_change_that_lowers_fatigue_a_tenth_cleanly() {
+        let mut v = vec![
+            what_if(0.1, 50.0, true),
+            what_if(0.2, 91.0, false),
+            what_if(0.3, 85.0, false),
+        ];
+        rank(&mut v);
+        assert_eq!(advice(&v).map(|w| w.after.u_per_hour_min), Some(85.0));
+        // 9 % lower is not enough, and the one that collides is never advised
+        v.retain(|w| w.after.u_per_hour_min != 85.0);
+        assert!(advice(&v).is_none());
+        // exactly a tenth lower is
+        let at_bound = what_if(0.4, 90.0, false);
+        assert!(at_bound.advised());
+        // unfinished, or exhausting a group the plan did not: not advised
+        let mut w = what_if(0.5, 60.0, false);
+        w.not_converged = vec!["lift".into()];
+        assert!(!w.advised());
+        let mut w = what_if(0.6, 60.0, false);
+        w.after.exhausted = true;
+        assert!(!w.advised());
+        w.before.exhausted = true;
+        assert!(w.advised());
     }
 }

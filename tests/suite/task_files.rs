@@ -839,6 +839,16 @@ fn what_if_lets_the_worker_step_within_a_metre_square_and_replans() {
         .map(|x| x.feet.as_ref().unwrap().steps)
         .sum();
     assert_eq!(w.after.steps_per_cycle, steps);
+    // the report's verdict recommends the change exactly when it is advised, in its own words
+    let html =
+        posture_opt::report::html::plan_report(&t, &p, &a, std::slice::from_ref(&w)).unwrap();
+    let start = html.find("<div class=\"verdict").unwrap();
+    let verdict = &html[start..start + html[start..].find("</div>").unwrap()];
+    assert_eq!(
+        verdict.contains("Letting the worker step and turn within 1.0 m × 1.0 m of floor"),
+        w.advised(),
+        "{verdict}\n{w:?}"
+    );
     // a task with its own area, and a seated one: no stepping what-if
     let a2 = posture_opt::assess::assess(&t2, &p2, 0.7);
     assert!(

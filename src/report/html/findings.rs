@@ -736,27 +736,44 @@ pub fn findings(
     f
 }
 
-/// "What would change it", from a what-if plan the tool ran.
-pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
+/// A what-if's change in words, for a sentence that goes on "would …" or with a comma.
+fn change_words(c: &crate::study::what_if::Change) -> String {
     use crate::study::what_if::Change;
-    let change = match &w.change {
+    match c {
         Change::MoveWork {
             phase,
             dz_m,
             elbow_height_m,
         } => format!(
-            "placing the work of {} {} {}, toward this worker’s elbow height ({}), ",
+            "placing the work of {} {} {}, toward this worker’s elbow height ({})",
             q(phase),
             mm(dz_m.abs()),
             if *dz_m > 0.0 { "up" } else { "down" },
             super::fmt::unit(*elbow_height_m, 2, "m")
         ),
         Change::StandingArea { half_side_m } => format!(
-            "letting the worker step and turn within {} × {} of floor around the stance (the task fixes the feet), ",
+            "letting the worker step and turn within {} × {} of floor around the stance (the task fixes the feet)",
             super::fmt::unit(2.0 * half_side_m, 1, "m"),
             super::fmt::unit(2.0 * half_side_m, 1, "m")
         ),
-    };
+    }
+}
+
+/// The verdict's recommendation from the advised what-if ([`crate::study::what_if::advice`]):
+/// "Letting the worker step … would lower fatigue per hour by 59 % (142.6 → 58.6 min/h)".
+pub fn advice_sentence(w: &crate::study::what_if::WhatIf) -> String {
+    format!(
+        "<b>{} would lower fatigue per hour by {:.0} %</b> ({:.1} → {:.1} min/h; see “What would change it”).",
+        capitalise(&change_words(&w.change)),
+        100.0 * (1.0 - w.after.u_per_hour_min / w.before.u_per_hour_min),
+        w.before.u_per_hour_min,
+        w.after.u_per_hour_min
+    )
+}
+
+/// "What would change it", from a what-if plan the tool ran.
+pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
+    let change = format!("{}, ", change_words(&w.change));
     let head =
         format!("<b>What would change it</b> (the task planned again by posture-opt): {change}");
     let text = if w.problems.is_empty() {
@@ -770,7 +787,11 @@ pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
         }
         t
     } else {
-        format!("cannot be done as planned: {}", w.problems.join("; "))
+        // the planner's failure to find a clean plan, not proof that the change cannot work
+        format!(
+            "not assessed: the plan posture-opt found for it is not one to act on ({}), so its figures are not given",
+            w.problems.join("; ")
+        )
     };
     Finding::new(Level::Info, format!("{head}{}.", esc(&text)))
 }

@@ -1034,6 +1034,10 @@ pub fn body(
             if problems == 1 { "shows" } else { "show" }
         );
     }
+    // the change that would help most, when one clearly would
+    if let Some(w) = crate::study::what_if::advice(what_ifs) {
+        let _ = write!(v.html, " {}", findings::advice_sentence(w));
+    }
     let _ = write!(
         o,
         "<div class=\"verdict {}\">{}</div>",
