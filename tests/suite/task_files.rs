@@ -849,6 +849,15 @@ fn what_if_lets_the_worker_step_within_a_metre_square_and_replans() {
         w.advised(),
         "{verdict}\n{w:?}"
     );
+    // and the finding it points to comes right after the hardest phase, before the criteria
+    let (change, criteria) = (
+        html.find("<b>What would change it</b>").unwrap(),
+        html.find("Shift criteria").unwrap(),
+    );
+    assert!(
+        change < criteria,
+        "the what-if is listed after the shift criteria"
+    );
     // a task with its own area, and a seated one: no stepping what-if
     let a2 = posture_opt::assess::assess(&t2, &p2, 0.7);
     assert!(

@@ -793,5 +793,6 @@ pub fn what_if_finding(w: &crate::study::what_if::WhatIf) -> Finding {
             w.problems.join("; ")
         )
     };
-    Finding::new(Level::Info, format!("{head}{}.", esc(&text)))
+    // next to the hardest phase, which it would change (the verdict points to it)
+    Finding::new(Level::Info, format!("{head}{}.", esc(&text))).pinned()
 }
