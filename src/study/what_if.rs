@@ -150,14 +150,24 @@ pub struct WhatIf {
 }
 
 impl WhatIf {
+    /// Whether the change keeps every muscle group from giving out where the plan has one give
+    /// out within the task.
+    pub fn ends_exhaustion(&self) -> bool {
+        self.before.exhausted && !self.after.exhausted
+    }
+
     /// Whether the report's verdict recommends the change: it can be done as planned, every
-    /// phase of its plan converged, it exhausts no muscle group the plan did not, and it lowers
-    /// fatigue per hour by at least [`ADVISE_FRACTION`].
+    /// phase of its plan converged, and either it ends an exhaustion ([`Self::ends_exhaustion`],
+    /// whatever fatigue per hour does: a plan that gives out stops early, so its figure per
+    /// hour is not comparable) or it exhausts no group the plan did not and lowers fatigue per
+    /// hour by at least [`ADVISE_FRACTION`].
     pub fn advised(&self) -> bool {
+        let lowers = self.before.u_per_hour_min > 0.0
+            && self.after.u_per_hour_min <= (1.0 - ADVISE_FRACTION) * self.before.u_per_hour_min;
         self.problems.is_empty()
             && self.not_converged.is_empty()
-            && (!self.after.exhausted || self.before.exhausted)
-            && self.after.u_per_hour_min <= (1.0 - ADVISE_FRACTION) * self.before.u_per_hour_min
+            && (self.ends_exhaustion()
+                || ((!self.after.exhausted || self.before.exhausted) && lowers))
     }
 }
 
@@ -371,12 +381,13 @@ pub fn what_ifs(
     Ok(v)
 }
 
-/// Orders what-ifs for the report: those that can be done as planned first, then by fatigue per
-/// hour after the change, lowest first.
+/// Orders what-ifs for the report: those that can be done as planned first, then those after
+/// which no group gives out, then by fatigue per hour after the change, lowest first.
 fn rank(v: &mut [WhatIf]) {
     v.sort_by(|x, y| {
         (!x.problems.is_empty())
             .cmp(&!y.problems.is_empty())
+            .then(x.after.exhausted.cmp(&y.after.exhausted))
             .then(x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min))
     });
 }
@@ -415,18 +426,22 @@ mod tests {
         }
     }
 
-    /// A change that cannot be done as planned comes last however low its fatigue; the others
-    /// by fatigue per hour after the change.
+    /// A change that cannot be done as planned comes last however low its fatigue, one after
+    /// which a group gives out comes after those after which none does; the others by fatigue
+    /// per hour after the change.
     #[test]
-    fn doable_changes_first_then_the_least_fatigue() {
+    fn doable_changes_first_then_no_exhaustion_then_the_least_fatigue() {
+        let mut exhausting = what_if(0.4, 40.0, false);
+        exhausting.after.exhausted = true;
         let mut v = vec![
             what_if(0.1, 50.0, true),
+            exhausting,
             what_if(0.2, 90.0, false),
             what_if(0.3, 60.0, false),
         ];
         rank(&mut v);
         let order: Vec<f64> = v.iter().map(|w| w.after.u_per_hour_min).collect();
-        assert_eq!(order, [60.0, 90.0, 50.0]);
+        assert_eq!(order, [60.0, 90.0, 40.0, 50.0]);
     }
 
     /// The verdict recommends the first ranked change that is doable, finished, exhausts no
@@ -455,5 +470,16 @@ mod tests {
         assert!(!w.advised());
         w.before.exhausted = true;
         assert!(w.advised());
+        // a change that ends an exhaustion is advised even when fatigue per hour rises (the
+        // plan that gives out stops early); unless it collides or did not finish
+        let mut w = what_if(0.7, 130.0, false);
+        w.before.exhausted = true;
+        assert!(w.ends_exhaustion() && w.advised());
+        w.not_converged = vec!["lift".into()];
+        assert!(!w.advised());
+        // no fatigue before: nothing to lower
+        let mut w = what_if(0.8, 0.0, false);
+        w.before.u_per_hour_min = 0.0;
+        assert!(!w.advised());
     }
 }

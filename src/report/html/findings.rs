@@ -760,8 +760,17 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
 }
 
 /// The verdict's recommendation from the advised what-if ([`crate::study::what_if::advice`]):
-/// "Letting the worker step … would lower fatigue per hour by 59 % (142.6 → 58.6 min/h)".
+/// "Letting the worker step … would lower fatigue per hour by 59 % (142.6 → 58.6 min/h)", or
+/// "… would keep every muscle group from giving out" when it ends an exhaustion.
 pub fn advice_sentence(w: &crate::study::what_if::WhatIf) -> String {
+    if w.ends_exhaustion() {
+        return format!(
+            "<b>{} would keep every muscle group from giving out</b> (fatigue per hour {:.1} → {:.1} min/h, the first until a group gives out; see “What would change it”).",
+            capitalise(&change_words(&w.change)),
+            w.before.u_per_hour_min,
+            w.after.u_per_hour_min
+        );
+    }
     format!(
         "<b>{} would lower fatigue per hour by {:.0} %</b> ({:.1} → {:.1} min/h; see “What would change it”).",
         capitalise(&change_words(&w.change)),
