@@ -109,7 +109,7 @@ impl BodyAngles {
         let (r_pelvis, _) = data.link_pose(model, pelvis);
         let (r_trunk, p_trunk) = data.link_pose(model, trunk);
         let (r_head, _) = data.link_pose(model, head);
-        // The body's horizontal frame: forward = the pelvis's x on the floor.
+        // The body's horizontal frame: forward = the pelvis's heading square to its hip axis.
         let fwd = crate::body::heading::pelvis_forward(&r_pelvis);
         let left = Vector3::z().cross(&fwd);
         let t_axis = r_trunk * Vector3::z();

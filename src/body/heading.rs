@@ -13,10 +13,18 @@ fn x_heading(r: &Matrix3<f64>) -> Option<Vector3<f64>> {
     Vector3::new(x.x, x.y, 0.0).try_normalize(1e-9)
 }
 
-/// The pelvis's forward heading: its x axis projected on the floor (world x when that axis is
-/// vertical).
+/// The pelvis's forward heading on the floor, square to its hip axis: `R ŷ` with its z dropped,
+/// normalised, crossed with `ẑ`. A stoop, a tilt about the hip axis, leaves it level, where the
+/// pelvis's x axis projected on the floor shortens and flips as the tilt passes 90° (which made
+/// the trunk's inclination, measured against it, jump by its whole value). The x axis's heading
+/// when the hip axis is vertical; world x when that axis is vertical too.
 pub fn pelvis_forward(r_pelvis: &Matrix3<f64>) -> Vector3<f64> {
-    x_heading(r_pelvis).unwrap_or_else(Vector3::x)
+    let y = r_pelvis * Vector3::y();
+    Vector3::new(y.x, y.y, 0.0)
+        .try_normalize(1e-9)
+        .map(|y| y.cross(&Vector3::z()))
+        .or_else(|| x_heading(r_pelvis))
+        .unwrap_or_else(Vector3::x)
 }
 
 /// The pelvis's turn against the feet [rad], toward the left positive: the pelvis's heading
@@ -29,10 +37,7 @@ pub fn pelvis_turn_rad(
     feet: impl IntoIterator<Item = Matrix3<f64>>,
 ) -> f64 {
     let feet: Vector3<f64> = feet.into_iter().filter_map(|r| x_heading(&r)).sum();
-    let y = r_pelvis * Vector3::y();
-    let hips = Vector3::new(y.x, y.y, 0.0)
-        .try_normalize(1e-9)
-        .map_or_else(|| pelvis_forward(r_pelvis), |y| y.cross(&Vector3::z()));
+    let hips = pelvis_forward(r_pelvis);
     if feet.norm() > 1e-9 {
         feet.cross(&hips).z.atan2(feet.dot(&hips))
     } else {

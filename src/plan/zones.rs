@@ -48,6 +48,13 @@
 //! the turn against the feet). A body without the worker's foot links turns against nothing
 //! (the row is its lumbar twist).
 //!
+//! **The trunk's inclination and side bending** are measured against the same heading
+//! ([`crate::body::heading::pelvis_forward`]). Against the pelvis's x axis on the floor, they
+//! turned with the pelvis's list by about `atan(sin list · tan tilt)` and the inclination jumped by
+//! its whole value as the pelvis tilted through 90°: the optimiser, drawn to the jump (the zone's
+//! penalty falls across it), stalled there on the pallet's grasp (a line-search stop with an
+//! optimality residual of 0.18).
+//!
 //! **Elastic.** A target can force a posture outside a zone (a shelf above the head forces the
 //! arm up). So each row has its own slack with a linear penalty [`ZONE_PENALTY_PER_RAD`] in the
 //! objective (an ℓ1 exact penalty, the elastic mode of SNOPT): inside the zones nothing changes,

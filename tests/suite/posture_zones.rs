@@ -189,6 +189,54 @@ fn the_turn_against_the_feet_is_the_trunks_heading_less_the_feets() {
     }
 }
 
+/// The trunk's inclination and side bending are measured against the pelvis's heading square to
+/// its hip axis, so a stoop through 90° of pelvis tilt changes them continuously (measured against
+/// the pelvis's x axis on the floor, the inclination jumped by its whole value at 90°, and the
+/// optimiser stalled at the jump on the pallet's grasp). Closed form for a pelvis turned by ψ,
+/// listed by λ and tilted by t with the trunk straight on it (`R_P = Rz(ψ) Rx(−λ) Ry(t)`, the trunk
+/// axis `a = R_P ẑ`, the heading `Rz(ψ) x̂`): inclination `atan2(sin t, cos t cos λ)`, side bending
+/// `asin(cos t sin λ)` to the left for the pelvis listed to the left — whatever ψ.
+#[test]
+fn a_stoop_through_ninety_degrees_of_pelvis_tilt_is_measured_continuously() {
+    let t = task("shelf.yaml");
+    let m = &t.model;
+    let zw = ZoneWork::new(m).expect("the generated worker");
+    let mut data = StaticsData::new(m, 4);
+    let k = |n: &str| m.q_index(n).unwrap();
+    let mut last: Option<f64> = None;
+    for psi_deg in [-40.0f64, 0.0, 25.0] {
+        for lambda_deg in [-15.0f64, 0.0, 10.0] {
+            for i in 0..=40 {
+                let tilt = (80.0 + 0.5 * i as f64).to_radians();
+                let (psi, lambda) = (psi_deg.to_radians(), lambda_deg.to_radians());
+                let mut q = vec![0.0; m.nq()];
+                q[k("pelvis_rotation")] = psi;
+                q[k("pelvis_list")] = lambda;
+                q[k("pelvis_tilt")] = tilt;
+                forward_kinematics(m, &mut data, &q);
+                let z = zw.angles_rad(m, &data, &q);
+                let incl = tilt.sin().atan2(tilt.cos() * lambda.cos());
+                let side = (tilt.cos() * lambda.sin()).asin();
+                assert!(
+                    (z[0] - incl).abs() < 1e-9 && (z[2] - side).abs() < 1e-9,
+                    "ψ {psi_deg}°, λ {lambda_deg}°, tilt {:.1}°: inclination {:.6}° (closed form \
+                     {:.6}°), side bending {:.6}° ({:.6}°)",
+                    tilt.to_degrees(),
+                    z[0].to_degrees(),
+                    incl.to_degrees(),
+                    z[2].to_degrees(),
+                    side.to_degrees()
+                );
+                // half a degree of tilt moves the inclination by about as much, never by a jump
+                if let Some(prev) = last.filter(|_| i > 0) {
+                    assert!((z[0] - prev).abs() < 1.0f64.to_radians());
+                }
+                last = Some(z[0]);
+            }
+        }
+    }
+}
+
 #[test]
 fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
     // a hold of T seconds is allowed the angle whose maximum holding time is T

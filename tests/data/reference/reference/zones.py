@@ -3,14 +3,20 @@
 Written from the statement only:
   * 25 zone rows per phase posture, g_i = theta_i - L_i <= 0 (the upper-arm rows are
     (cos L - cos theta)/sin L, as the statement writes them), elastic with slack v_i >= 0;
-    rows 24-25 (statement of 2026-12-06, pelvis heading from the hip axis since its second
-    revision that day): the trunk's turn against the feet = the trunk twist (wrap(2 atan2(k, w))
-    of R_P^T R_T) + the pelvis's turn against the feet atan2((h x g)_z, h.g), h = sum of the unit
-    horizontal projections of the x axes of the links r_foot and l_foot (a projection shorter
-    than 1e-9 left out; the pelvis's turn is 0 if |h| < 1e-9 or the body has no such links, so
-    the row is the twist), g = the pelvis's heading from its hip axis: (R_P y with its z dropped,
-    normalised) x z (f, the other rows' pelvis heading, if that projection is shorter than
-    1e-9); the sum is not wrapped (the statement says so);
+    the pelvis's forward heading f (used by the trunk inclination atan2(a.f, a_z), the side
+    bending asin(a.l), l = z x f, and the turn rows) is taken from its hip axis since the
+    statement's third revision of 2026-12-06: f = (R_P y with its z dropped, normalised) x z; if
+    that projection is shorter than 1e-9, the horizontal unit vector along R_P x projected on the
+    floor; world x if that one is too (hip_axis_heading). A stoop (a tilt about the hip axis)
+    leaves f level and unchanged, and the trunk inclination is continuous as the tilt passes 90
+    deg. (Before: f = R_P x projected on the floor, world x if shorter than 1e-9; from the
+    statement's second revision to its third, the turn rows alone used the hip-axis heading.)
+    rows 24-25 (statement of 2026-12-06): the trunk's turn against the feet = the trunk twist
+    (wrap(2 atan2(k, w)) of R_P^T R_T) + the pelvis's turn against the feet
+    atan2((h x g)_z, h.g), h = sum of the unit horizontal projections of the x axes of the links
+    r_foot and l_foot (a projection shorter than 1e-9 left out; the pelvis's turn is 0 if
+    |h| < 1e-9 or the body has no such links, so the row is the twist), g = f, the pelvis's
+    heading from its hip axis; the sum is not wrapped (the statement says so);
   * limits from the phase's hold (run of consecutive phases of the same work: same targets, hand
     forces and gaze; across the cycle's end when the task has no rest); a posture shared by
     several phases takes the smallest limit per row;
@@ -205,15 +211,27 @@ class ZoneModel:
         return v0, J
 
 
-def hip_axis_heading(RP, f):
-    """The pelvis's heading from its hip axis: g = (R_P y with its z dropped, normalised) x z;
-    f (the x-axis heading) if that projection is shorter than 1e-9. A tilt about the hip axis
-    (a stoop) leaves g level and unchanged."""
+def x_axis_heading(RP):
+    """The horizontal unit vector along R_P x projected on the floor; world x if that
+    projection is shorter than 1e-9 (the pelvis heading f of the statement before its third
+    revision of 2026-12-06; now only the fallback of hip_axis_heading)."""
+    f = np.array(RP[:, 0], float)
+    f[2] = 0.0
+    return _unit_or(f, [1.0, 0.0, 0.0])
+
+
+def hip_axis_heading(RP, fallback=None):
+    """The pelvis's forward heading from its hip axis (the statement's f since its third
+    revision of 2026-12-06, used by the trunk inclination, side bending and turn rows):
+    (R_P y with its z dropped, normalised) x z; if that projection is shorter than 1e-9, the
+    fallback (default: x_axis_heading(RP), the horizontal unit vector along R_P x projected on
+    the floor, world x if that one is too). A tilt about the hip axis (a stoop) leaves it level
+    and unchanged."""
     y = np.array(RP[:, 1], float)
     y[2] = 0.0
     n = np.linalg.norm(y)
     if n < 1e-9:
-        return np.array(f, float)
+        return x_axis_heading(RP) if fallback is None else np.array(fallback, float)
     y /= n
     return np.array([y[1], -y[0], 0.0])   # y x z
 
@@ -240,9 +258,9 @@ def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists, feet_x=()):
     upper-arm origin -> forearm origin, the neck twist joint, (flexion, deviation) per wrist and
     the world x axes of the links r_foot, l_foot (none: the turn against the feet is the twist)."""
     z = np.array([0.0, 0.0, 1.0])
-    f = np.array(RP[:, 0], float)
-    f[2] = 0.0
-    f = _unit_or(f, [1.0, 0.0, 0.0])
+    # f: the pelvis's heading from its hip axis (statement of 2026-12-06, third revision), with
+    # the statement's fallbacks (the x axis's floor projection, then world x)
+    f = hip_axis_heading(RP)
     l = np.cross(z, f)
     a = RT[:, 2]
     b = RH[:, 2]
@@ -272,7 +290,7 @@ def angles_from_frames(RP, RT, RH, arm_r, arm_l, neck_twist, wrists, feet_x=()):
     wr = []
     for fl, dv in wrists:
         wr += [fl, -fl, dv, -dv]
-    turn = twist + pelvis_turn(hip_axis_heading(RP, f), feet_x)   # not wrapped
+    turn = twist + pelvis_turn(f, feet_x)   # g = f; not wrapped
     return np.array([th_trunk, -th_trunk, side, -side, twist, -twist, arms[0], arms[1],
                      head_incl, -head_incl, neck_flex, neck_side, -neck_side, nt, -nt] + wr
                     + [turn, -turn])
