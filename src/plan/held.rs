@@ -8,6 +8,10 @@
 //!
 //! The arms are the rigid bodies on the path from one hand to the root that are not on the
 //! other hand's path (for the generated worker: hands, forearms, upper arms, shoulders).
+//!
+//! The planner keeps the rest of the body clear of the object as of any obstacle
+//! ([`objects`]: the phase's objects are obstacles of its solve, at the task's clearance), so a
+//! collision reported here is one the optimiser could not avoid.
 
 use super::posture::Scene;
 use super::task::{Phase, Task};
@@ -42,6 +46,33 @@ pub(crate) fn arm_bodies(t: &Task) -> HashSet<usize> {
     }
 }
 
+/// The held object of a phase as an obstacle: an axis-aligned box at its place.
+fn object_spec(o: &super::task::HeldObject) -> ObstacleSpec {
+    ObstacleSpec {
+        name: "held object".into(),
+        shape: ShapeSpec::Box { size_m: o.size_m },
+        position_m: o.center_m,
+        rpy_rad: [0.0; 3],
+    }
+}
+
+/// The held objects of phases `members` (one posture serves them all) as obstacles, each
+/// distinct object once; `None` when no phase holds one.
+pub(crate) fn objects(t: &Task, members: &[usize]) -> Option<Workstation> {
+    let mut specs: Vec<ObstacleSpec> = Vec::new();
+    for o in members.iter().filter_map(|&p| t.phases[p].object.as_ref()) {
+        let s = object_spec(o);
+        if !specs.contains(&s) {
+            specs.push(s);
+        }
+    }
+    if specs.is_empty() {
+        return None;
+    }
+    // the task's loader checked every object's size and place
+    Workstation::new(specs).ok()
+}
+
 /// The deepest overlap of phase `ph`'s held object with the body (arms excepted) in posture
 /// `q_rad`, when deeper than resting contact: (signed distance \[m\], the link's name).
 pub fn object_body_overlap(t: &Task, ph: &Phase, q_rad: &[f64]) -> Option<(f64, String)> {
@@ -59,13 +90,7 @@ pub(crate) fn overlap(
     if q_rad.len() != t.model.nq() {
         return None;
     }
-    let ws = Workstation::new(vec![ObstacleSpec {
-        name: "held object".into(),
-        shape: ShapeSpec::Box { size_m: o.size_m },
-        position_m: o.center_m,
-        rpy_rad: [0.0; 3],
-    }])
-    .ok()?;
+    let ws = Workstation::new(vec![object_spec(&o)]).ok()?;
     let m = &t.model;
     let mut data = StaticsData::new(m, 0);
     forward_kinematics(m, &mut data, q_rad);

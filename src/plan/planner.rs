@@ -162,6 +162,8 @@ pub struct Planner<'t> {
     /// Whether the phases look at their gaze points ([`PlanOptions::gaze`]).
     gaze_on: bool,
     zone_work: Option<ZoneWork>,
+    /// Per group, its phases' held objects as obstacles ([`super::held::objects`]).
+    held: Vec<Option<crate::workstation::Workstation>>,
 }
 
 /// Postures of every group, with their solve records.
@@ -229,10 +231,15 @@ impl<'t> Planner<'t> {
         let mut rest_loads = vec![0.0; nh];
         solver.pw.statics(task, &q_rest, &[Vector3::zeros(); 2]);
         solver.pw.half_joint_loads(task, &q_rest, &mut rest_loads);
+        let held = groups
+            .iter()
+            .map(|m| super::held::objects(task, m))
+            .collect();
         Ok(Planner {
             task,
             qp_solves_before: solver.work.qp.solves,
             solver,
+            held,
             groups,
             rest_loads,
             rest_solve,
@@ -551,6 +558,7 @@ impl<'t> Planner<'t> {
                 }
                 self.solver.pool.clear();
                 self.solver.stepping = self.stepping_for(g, gp, fatigue_only);
+                self.solver.held = self.held[g].clone();
                 let (out, stats) = self
                     .solver
                     .solve(&spec, &mut cost, Some(&start), global || cross, &mut q)
@@ -716,6 +724,7 @@ impl<'t> Planner<'t> {
             // steps from and back to the rest stance
             let weight = self.step_weight(false);
             let asymmetry = self.asymmetry_for(g, false);
+            self.solver.held = self.held[g].clone();
             self.solver.stepping = match self.feet_at(&self.solver.q_rest.clone()) {
                 Some(f) if weight > 0.0 => Stepping {
                     weight,
@@ -1136,7 +1145,10 @@ impl<'t> Planner<'t> {
         let t = self.task;
         self.solver.pw.statics(t, q, &[Vector3::zeros(); 2]);
         let horizon = self.solver.settings.contact_horizon_m;
-        let d = self.solver.pw.clearances(t, &self.solver.scene, horizon);
+        let d = self
+            .solver
+            .pw
+            .clearances(t, &self.solver.scene, horizon, None);
         let closest = self
             .solver
             .pw
@@ -1241,7 +1253,10 @@ impl<'t> Planner<'t> {
                 let (_, closest) = {
                     self.solver.pw.statics(t, q, &ph.hand_force_n);
                     let horizon = self.solver.settings.contact_horizon_m;
-                    self.solver.pw.clearances(t, &self.solver.scene, horizon);
+                    let held = super::held::objects(t, &[p]);
+                    self.solver
+                        .pw
+                        .clearances(t, &self.solver.scene, horizon, held.as_ref());
                     let c = self
                         .solver
                         .pw
@@ -1354,6 +1369,7 @@ fn describe_contact(t: &Task, link: usize, other: &Other) -> String {
             t.workstation.obstacles[*i].spec.name
         ),
         Other::Body { link: l2, .. } => format!("{} ↔ {}", name(link), name(*l2)),
+        Other::HeldObject => format!("held object ↔ {}", name(link)),
     }
 }
 

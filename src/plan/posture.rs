@@ -13,7 +13,7 @@ use crate::body::statics::{
     apply_loads, forward_kinematics, holding_torque_derivative, mass_moments,
 };
 use crate::body::{JointKind, PointLoad, StaticsData};
-use crate::workstation::Clearance;
+use crate::workstation::{Clearance, Workstation};
 use nalgebra::{DMatrix, Isometry3, Matrix2xX, Matrix3, Matrix3xX, Vector2, Vector3};
 
 /// A body capsule: link, segment end points in the link frame, radius.
@@ -50,7 +50,12 @@ pub struct Contact {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Other {
     Obstacle(usize),
-    Body { link: usize, point_m: Vector3<f64> },
+    Body {
+        link: usize,
+        point_m: Vector3<f64>,
+    },
+    /// A held object of the phase (the body other than the arms keeps clear of it).
+    HeldObject,
 }
 
 /// The task's body and scene as the optimiser sees them (fixed for a task).
@@ -66,6 +71,8 @@ pub struct Scene {
     pub actuated: Vec<usize>,
     /// Row of each q index among the actuated joints.
     pub actuated_row: Vec<Option<usize>>,
+    /// Links of the arms (they hold the object, so they may touch it: [`super::held`]).
+    pub arm_link: Vec<bool>,
 }
 
 /// Closest points of segments p1–q1 and p2–q2 (Ericson, Real-Time Collision Detection, 5.1.9).
@@ -206,6 +213,10 @@ impl Scene {
                 actuated.push(q);
             }
         }
+        let arms = super::held::arm_bodies(task);
+        let arm_link = (0..m.links.len())
+            .map(|l| arms.contains(&m.link_in_body[l].body))
+            .collect();
         Scene {
             capsules,
             boxes,
@@ -213,6 +224,7 @@ impl Scene {
             feet_links,
             actuated,
             actuated_row,
+            arm_link,
         }
     }
 }
@@ -613,9 +625,16 @@ impl PostureWork {
         }
     }
 
-    /// Clearances of the body (capsules and boxes) from the obstacles and from itself, below
-    /// `within_m`, into `self.contacts`; returns the smallest.
-    pub fn clearances(&mut self, task: &Task, scene: &Scene, within_m: f64) -> f64 {
+    /// Clearances of the body (capsules and boxes) from the obstacles, from the phase's held
+    /// objects (`held`, the arms excepted) and from itself, below `within_m`, into
+    /// `self.contacts`; returns the smallest.
+    pub fn clearances(
+        &mut self,
+        task: &Task,
+        scene: &Scene,
+        within_m: f64,
+        held: Option<&Workstation>,
+    ) -> f64 {
         let m = &task.model;
         self.contacts.clear();
         let mut min_d = f64::INFINITY;
@@ -625,14 +644,22 @@ impl PostureWork {
             self.scratch.clear();
             task.workstation
                 .clearances(&a, &b, c.radius_m, within_m, &mut self.scratch);
-            for cl in &self.scratch {
+            let obstacles = self.scratch.len();
+            if let Some(h) = held.filter(|_| !scene.arm_link[c.link]) {
+                h.clearances(&a, &b, c.radius_m, within_m, &mut self.scratch);
+            }
+            for (i, cl) in self.scratch.iter().enumerate() {
                 min_d = min_d.min(cl.distance_m);
                 self.contacts.push(Contact {
                     distance_m: cl.distance_m,
                     link: c.link,
                     point_m: cl.point_m,
                     normal: cl.normal,
-                    other: Other::Obstacle(cl.obstacle),
+                    other: if i < obstacles {
+                        Other::Obstacle(cl.obstacle)
+                    } else {
+                        Other::HeldObject
+                    },
                 });
             }
         }

@@ -19,6 +19,7 @@ use super::sqp::{PhaseProblem, SqpOutcome, SqpSettings, SqpWork, solve_phase};
 use super::stepping::Stepping;
 use super::task::Task;
 use super::zones::ZoneLimits;
+use crate::workstation::Workstation;
 use nalgebra::Vector3;
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_2;
@@ -78,6 +79,8 @@ pub struct PhaseSolver<'t> {
     /// The cost of steps to and from the neighbouring phases of the next solves (set by the
     /// planner per group; empty: no cost).
     pub stepping: Stepping,
+    /// The held objects of the next solves' phases (set by the planner per group; `None`: none).
+    pub held: Option<Workstation>,
 }
 
 /// A phase to solve: targets, hand forces, and how its cost is weighed.
@@ -147,6 +150,7 @@ impl<'t> PhaseSolver<'t> {
             extra_seeds: Vec::new(),
             pool: Vec::new(),
             stepping: Stepping::default(),
+            held: None,
         })
     }
 
@@ -481,6 +485,7 @@ impl<'t> PhaseSolver<'t> {
             gaze_m: spec.gaze_m,
             stepping: &self.stepping,
             zones: spec.zones,
+            held: self.held.as_ref(),
         };
         let r = solve_phase(
             self.task,

@@ -49,6 +49,7 @@ use super::stepping::Stepping;
 use super::task::Task;
 use super::zones::{ZONE_PENALTY_PER_RAD, ZONE_ROWS, ZoneLimits, ZoneWork};
 use crate::body::Direction;
+use crate::workstation::Workstation;
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -173,6 +174,8 @@ pub struct PhaseProblem<'a> {
     pub stepping: &'a Stepping,
     /// The acceptable posture zones (`None`: unconstrained).
     pub zones: Option<ZoneLimits>,
+    /// The phase's held objects, obstacles to the body other than the arms (`None`: none).
+    pub held: Option<&'a Workstation>,
 }
 
 /// Buffers and the QP of one task.
@@ -384,7 +387,7 @@ fn merit(
         .map(|h| Vector3::new(res[3 * h], res[3 * h + 1], res[3 * h + 2]).norm())
         .fold(0.0, f64::max);
     work.eq_res = res;
-    let min_clear = pw.clearances(task, scene, s.contact_horizon_m);
+    let min_clear = pw.clearances(task, scene, s.contact_horizon_m, prob.held);
     let clear_viol = (task.objective.clearance_m - min_clear).max(0.0);
     let margin = pw.ground.map(|g| g.margin_m).unwrap_or(f64::INFINITY);
     let bal_viol = (task.objective.balance_margin_m - margin).max(0.0);
@@ -560,7 +563,7 @@ fn build_qp(
     posture_terms(task, scene, pw, work, prob, q);
     let mut res = std::mem::take(&mut work.eq_res);
     equality_residuals(task, pw, &prob.targets_m, &mut res);
-    pw.clearances(task, scene, s.contact_horizon_m);
+    pw.clearances(task, scene, s.contact_horizon_m, prob.held);
     pw.contacts
         .sort_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
     pw.contacts.truncate(s.clearance_rows);
@@ -1029,6 +1032,7 @@ pub fn solve_phase(
                     pw,
                     &prob.targets_m,
                     prob.gaze_m.as_ref(),
+                    prob.held,
                     &mut trial,
                     work.settings.contact_horizon_m,
                 );
@@ -1080,6 +1084,7 @@ pub fn restore(
     pw: &mut PostureWork,
     targets: &[Option<Vector3<f64>>; 2],
     gaze_m: Option<&Vector3<f64>>,
+    held: Option<&Workstation>,
     q: &mut [f64],
     horizon_m: f64,
 ) -> f64 {
@@ -1116,7 +1121,7 @@ pub fn restore(
             }
         }
         // violated clearances: d(q) = d_min
-        pw.clearances(task, scene, horizon_m);
+        pw.clearances(task, scene, horizon_m, held);
         let contacts: Vec<_> = pw
             .contacts
             .iter()

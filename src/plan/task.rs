@@ -211,7 +211,9 @@ pub struct ObjectFile {
     pub center_m: [f64; 3],
     /// Distance between the hands \[m\], along the world y axis (left hand on +y).
     pub grip_width_m: f64,
-    /// Size of the object (x, y, z) \[m\], for the figures; default a box as wide as the grip.
+    /// Size of the object (x, y, z) \[m\]: the box the worker's body keeps clear of (the arms that
+    /// hold it excepted) and the figures draw; default 0.30 × grip width × 0.25 (x, y,
+    /// z).
     #[serde(default)]
     pub size_m: Option<[f64; 3]>,
 }

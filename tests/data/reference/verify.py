@@ -21,7 +21,10 @@
    trunk inclination's continuity as the pelvis's tilt passes 90 deg; the trunk's turn against
    the feet (rows 24-25) vs frame yaws, an analytic Jacobian and 5-point differences at 40 random
    postures, its sign on fixed feet, and tilted pelvises (a stoop about the hip axis turns
-   nothing).
+   nothing);
+9. held objects: the arms (links on one hand's path to the root only), the held-box pairs per
+   distinct phase, their distances vs brute-force sampling and Jacobian rows vs finite
+   differences, and the feasibility report (a box on the trunk violates, one at a hand does not).
 """
 import json
 import math
@@ -1304,6 +1307,113 @@ def check_turn_rows():
         ok and ok1 and ok2 and ok3 and ok4)
 
 
+# ----------------------------------------------------------------------------------------------
+# 9. held objects (statement section 4): the arms, the pairs per distinct phase, the distances
+#    against brute-force sampling, the Jacobian rows, and the feasibility report
+# ----------------------------------------------------------------------------------------------
+def check_held_objects():
+    out = {}
+    ok = True
+    # (a) the arms: the links on one hand's path to the root but not on the other's, for both
+    # workers (robots/worker.urdf and the generated bench_assembly worker); their capsules are
+    # the hands, forearms and upper arms (the shoulder links carry no collision shape)
+    exp = {f"{s}_{n}" for s in "rl" for n in ("hand_grip", "hand", "wrist_flexion_link", "forearm",
+                                               "elbow_flexion_link", "upper_arm",
+                                               "shoulder_abduction_link", "shoulder_flexion_link")}
+    for key in ("pallet", "bench_assembly"):
+        b = M.load_task(key).body
+        caps = sorted(set(l for l in b.cap_links if l in b.arm_links))
+        out[f"{key}: arm links"] = sorted(b.arm_links)
+        out[f"{key}: arm capsules"] = caps
+        ok = ok and b.arm_links == exp and caps == sorted(f"{s}_{n}" for s in "rl"
+                                                          for n in ("forearm", "hand", "upper_arm"))
+    # (b) the pairs: pallet 4 distinct phases, one box each; shelf_two_hands' repeated picks and
+    # carries share a posture and their (identical) box is counted once; tasks without objects
+    # have none
+    for key in ("pallet", "shelf_two_hands", "shelf", "bench_assembly"):
+        t = M.load_task(key)
+        pr = M.Problem(t)
+        nb = [len(g["held"]) for g in t.groups]
+        npairs = [len(p) for p in pr.pairs.held_pairs]
+        out[f"{key}: held boxes / pairs per distinct phase"] = [nb, npairs]
+        nn = len(pr.pairs.nonarm_caps)
+        want = [1] * t.P if key in ("pallet", "shelf_two_hands") else [0] * t.P
+        ok = ok and nb == want and npairs == [nn * k for k in want] and nn == 7
+    # (c) held distances (after fk) vs brute-force sampling of each capsule's axis against the box,
+    # and (d) their Jacobian rows vs central differences, at projected postures of pallet
+    t = M.load_task("pallet")
+    pr = M.Problem(t)
+    nlp = JointNLP(pr)
+    b = t.body
+    rng = np.random.default_rng(21)
+    worst_d, worst_j, n_checked = 0.0, 0.0, 0
+    ts = np.linspace(0, 1, 2001)
+    for gi in range(t.P):
+        pm = nlp.pm[gi]
+        q = S.ik_project(pm, S.template(b, t.rest_q, S.FAMILIES["stoop_mild"], rng))
+        q = np.clip(q, b.lower + 1e-4, b.upper - 1e-4)
+        b.fk(q)
+        nrow = pr.pairs.n_pairs(gi)
+        h0 = len(pr.pairs.obs_pairs) + len(pr.pairs.self_pairs)
+        dist, J = pr.pairs.distances(with_jac=True, gi=gi)
+        assert len(dist) == nrow == pm.n_dist
+        caps = b.world_capsules()
+        for r, (ci, k) in enumerate(pr.pairs.held_pairs[gi]):
+            c, hf = t.groups[gi]["held"][k]
+            a, bb, rad = caps[ci]
+            pts = a + ts[:, None] * (bb - a)
+            brute = min(geo.point_box_sd(x, c, np.eye(3), hf)[0] for x in pts) - rad
+            if brute < geo.FAR:
+                worst_d = max(worst_d, abs(dist[h0 + r] - brute))
+                n_checked += 1
+        hstep = 1e-6
+        FD = np.zeros((nrow - h0, b.nq))
+        for i in range(b.nq):
+            qp = q.copy()
+            qp[i] += hstep
+            qm = q.copy()
+            qm[i] -= hstep
+            b.fk(qp)
+            dp, _ = pr.pairs.distances(gi=gi)
+            b.fk(qm)
+            dm, _ = pr.pairs.distances(gi=gi)
+            FD[:, i] = (dp[h0:] - dm[h0:]) / (2 * hstep)
+        b.fk(q)
+        keep = dist[h0:] > -0.005
+        if keep.any():
+            worst_j = max(worst_j, float(np.max(np.abs(J[h0:] - FD)[keep])))
+    out["held distances vs brute-force sampling (max abs err, sampling 5e-4)"] = worst_d
+    out["held distance rows checked"] = n_checked
+    out["held Jacobian rows vs FD (max abs err)"] = worst_j
+    ok = ok and worst_d < 1e-3 and n_checked > 0 and worst_j < 1e-4
+    # (e) feasibility: a posture with the held box moved onto the trunk is reported infeasible
+    # (and its pair named); a box around the hands only (the arms are excluded) is not
+    t = M.load_task("pallet")
+    g = t.groups[2]
+    q = S.ik_project(JointNLP(M.Problem(t)).pm[2],
+                     S.template(t.body, t.rest_q, S.FAMILIES["upright"], None))
+    t.body.fk(q)
+    trunk = [c for c in t.body.capsules if c["link"] == "trunk"][0]
+    o, R = t.body.frame_pose(trunk["fid"])
+    mid = o + R @ (0.5 * (trunk["a"] + trunk["b"]))
+    g["held"] = [(mid, np.array([0.05, 0.05, 0.05]))]
+    rep = M.Problem(t).evaluate([q] * t.P)
+    r1 = rep["phases"][2]["residuals"]
+    bad = [v for v in rep["feasible"]["violations"] if "min_clearance_held_m" in v]
+    xr = t.body.data.oMf[t.body.fid["r_hand_grip"]].translation.copy()
+    g["held"] = [(xr, np.array([0.01, 0.01, 0.01]))]
+    rep2 = M.Problem(t).evaluate([q] * t.P)
+    r2 = rep2["phases"][2]["residuals"]
+    out["box on the trunk: min_clearance_held_m, pair, violations"] = [
+        r1["min_clearance_held_m"], r1["min_clearance_held_pair"], bad]
+    out["box at the right hand: min_clearance_held_m, pair"] = [
+        r2["min_clearance_held_m"], r2["min_clearance_held_pair"]]
+    ok = ok and r1["min_clearance_held_m"] < 0 and r1["min_clearance_held_pair"] == "trunk | held object" \
+        and len(bad) == 1 and r2["min_clearance_held_m"] > 0.0
+    rec("held objects (non-arm capsules vs each distinct phase's held boxes): arm links, pairs, "
+        "distances vs sampling, Jacobian rows vs FD, feasibility report", out, ok)
+
+
 if __name__ == "__main__":
     check_fatigue()
     check_fatigue_grad()
@@ -1317,6 +1427,7 @@ if __name__ == "__main__":
     check_zone_angles()
     check_gaze_and_zone_jacobians()
     check_turn_rows()
+    check_held_objects()
     here = os.path.dirname(os.path.abspath(__file__))
     out = os.path.join(here, "results", "verification.json")
     if "--out" in sys.argv:

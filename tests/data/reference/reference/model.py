@@ -141,6 +141,16 @@ class Body:
         fr = lambda name: m.getFrameId(name)
         self.fid = {n: fr(n) for n in ("r_hand_grip", "l_hand_grip", "r_foot", "l_foot")}
         self._parse_shapes()
+        # the arms (statement section 4, "held objects"): the rigid bodies on one hand's path to
+        # the root but not on the other's (URDF links, the hand frames' own links included)
+        paths = {}
+        for h in ("r_hand_grip", "l_hand_grip"):
+            path, link = [], h
+            while link is not None:
+                path.append(link)
+                link = self.parent_link.get(link)
+            paths[h] = set(path)
+        self.arm_links = paths["r_hand_grip"] ^ paths["l_hand_grip"]
 
     # --- strength -----------------------------------------------------------------------------
     def _build_strength(self, st, sex, percentile):
@@ -389,11 +399,18 @@ class Task:
             ph.name = p.get("name", f"phase {i}")
             ph.duration = float(p["duration_s"])
             targets = {}
+            ph.held = None
             if "object" in p:
                 c = np.array(p["object"]["center_m"], float)
                 gw = float(p["object"]["grip_width_m"])
                 targets["r"] = c - np.array([0, gw / 2, 0])
                 targets["l"] = c + np.array([0, gw / 2, 0])
+                # held object (statement section 4): an axis-aligned box of size_m at center_m,
+                # size_m by default 0.30 x grip_width_m x 0.25
+                size = p["object"].get("size_m")
+                if size is None:
+                    size = [0.30, gw, 0.25]
+                ph.held = (c, np.array(size, float) / 2)
             elif "targets" in p:
                 if p["targets"].get("right_m") is not None:
                     targets["r"] = np.array(p["targets"]["right_m"], float)
@@ -438,8 +455,16 @@ class Task:
         self.groups = []
         for gi in range(len(groups)):
             members = [ph for ph in self.phases if ph.group == gi]
+            # the held boxes of every phase that shares the posture (distinct boxes once)
+            held = []
+            for m_ in members:
+                if m_.held is not None and not any(
+                        np.array_equal(m_.held[0], c) and np.array_equal(m_.held[1], h)
+                        for c, h in held):
+                    held.append(m_.held)
             self.groups.append(dict(name=members[0].name, members=[m.name for m in members],
-                                    targets=members[0].targets, forces=members[0].forces))
+                                    targets=members[0].targets, forces=members[0].forces,
+                                    held=held))
         self.P = len(self.groups)
 
     def _build_obstacles(self, t):
@@ -698,6 +723,11 @@ class Pairs:
                 self.self_pairs.append((i, j))
         # capsule-obstacle pairs: all
         self.obs_pairs = [(i, k) for i in range(nc) for k in range(len(task.obstacles))]
+        # held objects (statement section 4): per distinct phase, every capsule outside the arms
+        # against each held box of the phases sharing the posture (appended after the self pairs)
+        self.nonarm_caps = [i for i in range(nc) if b.capsules[i]["link"] not in b.arm_links]
+        self.held_pairs = [[(i, k) for i in self.nonarm_caps for k in range(len(g["held"]))]
+                           for g in task.groups]
         # foot-box vs obstacle pairs (constant under the stance constraint; evaluated, not optimised)
         self.box_pairs = []
         for bi, bx in enumerate(b.boxes):
@@ -707,10 +737,18 @@ class Pairs:
                     continue
                 self.box_pairs.append((bi, k))
 
-    def names(self):
+    def n_pairs(self, gi=None):
+        """Rows of distances(gi): obstacle, self and (for a distinct phase gi) held-object pairs."""
+        return len(self.obs_pairs) + len(self.self_pairs) + \
+            (len(self.held_pairs[gi]) if gi is not None else 0)
+
+    def names(self, gi=None):
         b, t = self.task.body, self.task
         out = [f"{b.capsules[i]['link']} | {t.obstacles[k]['name']}" for i, k in self.obs_pairs]
         out += [f"{b.capsules[i]['link']} | {b.capsules[j]['link']}" for i, j in self.self_pairs]
+        if gi is not None:
+            out += [f"{b.capsules[i]['link']} | held object" + (f" {k}" if k else "")
+                    for i, k in self.held_pairs[gi]]
         return out
 
     def _arrays(self):
@@ -731,8 +769,25 @@ class Pairs:
                 rad=np.array([c["r"] for c in t.body.capsules], float))
         return self._arr
 
-    def distances(self, with_jac=False, rows=None):
-        """Signed distances (after body.fk) of capsule-obstacle then self pairs; optional Jacobian
+    def _held_arrays(self, gi):
+        if getattr(self, "_harr", None) is None:
+            self._harr = {}
+        if gi not in self._harr:
+            held = self.task.groups[gi]["held"]
+            n = len(held)
+            self._harr[gi] = dict(
+                okind=np.zeros(n, np.int64),
+                ocenter=np.array([c for c, _ in held], float).reshape(-1, 3),
+                oR=np.array([np.eye(3)] * n, float).reshape(-1, 3, 3),   # axis-aligned
+                ohalf=np.array([h for _, h in held], float).reshape(-1, 3),
+                oradius=np.zeros(n), ohalf_h=np.zeros(n), onormal=np.zeros((n, 3)),
+                ooffset=np.zeros(n),
+                pairs=np.array(self.held_pairs[gi], np.int64).reshape(-1, 2))
+        return self._harr[gi]
+
+    def distances(self, with_jac=False, rows=None, gi=None):
+        """Signed distances (after body.fk) of capsule-obstacle then self pairs, then (for a
+        distinct phase gi) the non-arm capsules against the phase's held boxes; optional Jacobian
         (only for the listed rows when rows is given; the other rows are zero)."""
         b = self.task.body
         ar = self._arrays()
@@ -743,6 +798,17 @@ class Pairs:
                                               ar["ohalf"], ar["oradius"], ar["ohalf_h"],
                                               ar["onormal"], ar["ooffset"], ar["obs_pairs"],
                                               ar["self_pairs"])
+        nh = len(self.held_pairs[gi]) if gi is not None else 0
+        if nh:
+            ha = self._held_arrays(gi)
+            hd, hw1, hw2, hn = geo.all_distances(A, B, ar["rad"], ha["okind"], ha["ocenter"],
+                                                 ha["oR"], ha["ohalf"], ha["oradius"],
+                                                 ha["ohalf_h"], ha["onormal"], ha["ooffset"],
+                                                 ha["pairs"], np.zeros((0, 2), np.int64))
+            dist = np.concatenate([dist, hd])
+            w1 = np.vstack([w1, hw1])
+            w2 = np.vstack([w2, hw2])
+            nrm = np.vstack([nrm, hn])
         if not with_jac:
             return dist, None
         n = len(dist)
@@ -756,13 +822,17 @@ class Pairs:
             return b.point_jac(fid, p, fj[fid])
 
         no = len(self.obs_pairs)
+        ns = len(self.self_pairs)
         for r in (range(n) if rows is None else rows):
             if r < no:
                 ci = self.obs_pairs[r][0]
                 J[r] = nrm[r] @ jac(ci, w1[r])
-            else:
+            elif r < no + ns:
                 ci, cj = self.self_pairs[r - no]
                 J[r] = nrm[r] @ (jac(ci, w1[r]) - jac(cj, w2[r]))
+            else:
+                ci = self.held_pairs[gi][r - no - ns][0]
+                J[r] = nrm[r] @ jac(ci, w1[r])
         return dist, J
 
     def box_distances(self):
@@ -873,9 +943,11 @@ class Problem:
             if not is_rest:
                 phase_loads.append(f)
             b.fk(q)
-            dist, _ = self.pairs.distances()
+            hgi = None if is_rest else gi
+            dist, _ = self.pairs.distances(gi=hgi)
             nob = len(self.pairs.obs_pairs)
-            names = self.pairs.names()
+            nself = len(self.pairs.self_pairs)
+            names = self.pairs.names(gi=hgi)
             box = self.pairs.box_distances()
             # support polygon from the actual feet
             pts = []
@@ -888,7 +960,9 @@ class Problem:
             herr = self.hand_errors(gi) if not is_rest else {}
             lim_viol = np.maximum(b.lower - q, 0) + np.maximum(q - b.upper, 0)
             obs_min_i = int(np.argmin(dist[:nob])) if nob else None
-            self_min_i = nob + int(np.argmin(dist[nob:])) if len(dist) > nob else None
+            self_min_i = nob + int(np.argmin(dist[nob:nob + nself])) if nself else None
+            held_min_i = nob + nself + int(np.argmin(dist[nob + nself:])) \
+                if len(dist) > nob + nself else None
             rep = dict(
                 name=gname,
                 members=t.groups[gi]["members"] if not is_rest else ["rest"],
@@ -913,6 +987,11 @@ class Problem:
                     min_clearance_obstacle_pair=names[obs_min_i] if obs_min_i is not None else None,
                     min_clearance_self_m=float(dist[self_min_i]) if self_min_i is not None else None,
                     min_clearance_self_pair=names[self_min_i] if self_min_i is not None else None,
+                    # held objects: the non-arm capsules against the held boxes of the phases
+                    # sharing the posture (None without a held box; a value above geometry.FAR is
+                    # a lower bound)
+                    min_clearance_held_m=float(dist[held_min_i]) if held_min_i is not None else None,
+                    min_clearance_held_pair=names[held_min_i] if held_min_i is not None else None,
                     min_clearance_foot_box_m=min((d for _, d in box), default=None),
                     balance_margin_m=bal,
                     joint_limit_violation_rad=float(lim_viol.max()),
@@ -970,8 +1049,9 @@ def feasibility(report, task, tol_eq=1e-4, tol_ineq=1e-6, tol_lim=1e-9, gaze=Fal
         for k, v in r["foot_orientation_error_rad"].items():
             if v > tol_eq:
                 bad.append(f"{ph['name']}: {k} orientation error {v:.3g}")
-        for key in ("min_clearance_obstacle_m", "min_clearance_self_m", "min_clearance_foot_box_m"):
-            v = r[key]
+        for key in ("min_clearance_obstacle_m", "min_clearance_self_m", "min_clearance_foot_box_m",
+                    "min_clearance_held_m"):
+            v = r.get(key)
             if v is not None and v < task.clearance - tol_ineq:
                 bad.append(f"{ph['name']}: {key} {v:.4g}")
         if r["balance_margin_m"] < task.balance_margin - tol_ineq:

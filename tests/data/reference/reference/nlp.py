@@ -35,7 +35,8 @@ class PhaseModel:
         self.edges_n, self.edges_o = self.task.stance_edges
         self.margin = margin
         self.n_eq = 3 * len(self.hands) + 12 + len(self.body.actuated)
-        self.n_dist = len(prob.pairs.obs_pairs) + len(prob.pairs.self_pairs)
+        # obstacle, self and held-object pairs (the last: this phase's held boxes)
+        self.n_dist = prob.pairs.n_pairs(gi)
         self.n_ineq = self.n_dist + len(self.edges_o)
         self._cache_key = None
         self._cache = None
@@ -95,7 +96,8 @@ class PhaseModel:
                 fJ.append(pin.Jlog3(Rerr) @ (R.T @ J[3:]))
         out["hand"] = np.concatenate(he) if he else np.zeros(0)
         out["feet"] = np.concatenate(fe)
-        dist, dJ = self.prob.pairs.distances(with_jac=jac, rows=self.active if jac else None)
+        dist, dJ = self.prob.pairs.distances(with_jac=jac, rows=self.active if jac else None,
+                                             gi=self.gi)
         out["dist"] = dist
         if jac:
             out["hand_J"] = np.vstack(hJ) if hJ else np.zeros((0, nq))
