@@ -1030,9 +1030,7 @@ pub fn solve_phase(
                     task,
                     scene,
                     pw,
-                    &prob.targets_m,
-                    prob.gaze_m.as_ref(),
-                    prob.held,
+                    prob,
                     &mut trial,
                     work.settings.contact_horizon_m,
                 );
@@ -1077,18 +1075,18 @@ pub fn solve_phase(
 /// Returns `q` onto the hand targets and the stance, and back to the boundary of any clearance
 /// or balance constraint it violates, by Newton projection (minimum-norm steps
 /// `Δ = Jᵀ(JJᵀ)⁻¹ r`, at most eight) within the joint limits: the optimiser's second-order
-/// correction. Returns the largest remaining residual \[m or rad\].
+/// correction. Returns the largest remaining residual \[m or rad\]. The phase's hand targets,
+/// gaze point and held objects come from `prob`.
 pub fn restore(
     task: &Task,
     scene: &Scene,
     pw: &mut PostureWork,
-    targets: &[Option<Vector3<f64>>; 2],
-    gaze_m: Option<&Vector3<f64>>,
-    held: Option<&Workstation>,
+    prob: &PhaseProblem,
     q: &mut [f64],
     horizon_m: f64,
 ) -> f64 {
     use nalgebra::{DMatrix, DVector};
+    let (targets, gaze_m, held) = (&prob.targets_m, prob.gaze_m.as_ref(), prob.held);
     let n = task.model.nq();
     let zero = [Vector3::zeros(); 2];
     let mut worst = f64::INFINITY;
