@@ -96,9 +96,14 @@ pub fn exit(r: anyhow::Result<()>) -> ExitCode {
 /// Writes to standard output: a closed one, a pipe whose reader left, or any other failure (a
 /// full disk) is reported with exit 2.
 pub fn stdout(bytes: &[u8]) -> anyhow::Result<()> {
+    write_stdout(|out| out.write_all(bytes))
+}
+
+/// Runs `write` on a buffered standard output and flushes it, with [`stdout`]'s errors.
+fn write_stdout(write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> anyhow::Result<()> {
     check_stdout()?;
-    let mut out = std::io::stdout().lock();
-    let r = out.write_all(bytes).and_then(|_| out.flush());
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+    let r = write(&mut out).and_then(|_| out.flush());
     match r {
         Ok(()) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(anyhow!(ClosedOutput)),
@@ -106,11 +111,13 @@ pub fn stdout(bytes: &[u8]) -> anyhow::Result<()> {
     }
 }
 
-/// Serialises to pretty JSON (serde) and prints it.
+/// Serialises to pretty JSON (serde) straight onto standard output, without a copy of the
+/// document in memory (a plan of many cycles is hundreds of megabytes of JSON).
 pub fn print_json(v: &impl serde::Serialize) -> anyhow::Result<()> {
-    let mut s = serde_json::to_vec_pretty(v)?;
-    s.push(b'\n');
-    stdout(&s)
+    write_stdout(|out| {
+        serde_json::to_writer_pretty(&mut *out, v).map_err(std::io::Error::from)?;
+        out.write_all(b"\n")
+    })
 }
 
 /// The outputs of one run, checked against its inputs, written all or none.
