@@ -572,8 +572,8 @@ fn the_reference_zone_angles_are_the_planners() {
 /// an independent reference").
 const ZONED_KNOWN_MISSES: &[(&str, f64)] = &[
     // measured 2026-12-06 (25 zone rows, the turn against the feet, the pelvis's heading from
-    // its hip axis): ours 4.8738 against the reference's best 4.8460 (U 130.8 against 127.2 min),
-    // above the median 4.8623 of its 4 whole-plan local optima (4.8889 under the x-axis heading)
+    // its hip axis; the reference's run 4): ours 4.8738 against the reference's best 4.8420
+    // (U 130.8 against 126.7 min), above the median 4.8632 of its 6 whole-plan local optima
     ("shelf", 0.06),
 ];
 
