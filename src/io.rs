@@ -114,14 +114,33 @@ fn file_id(path: &Path) -> Option<FileId> {
     }
 }
 
-/// The files one run reads and writes, written together at the end (all or none).
-#[derive(Debug, Default)]
-pub struct OutputSet {
-    inputs: Vec<(PathBuf, FileId)>,
-    outputs: Vec<(String, PathBuf, Vec<u8>)>,
+/// Writes an output's content into its (temporary) file.
+type WriteFn<'a> = Box<dyn FnOnce(&mut dyn Write) -> std::io::Result<()> + 'a>;
+
+/// An output's content: bytes made beforehand, or written as they are produced (a long timeline
+/// need not sit in memory).
+enum Content<'a> {
+    Bytes(Vec<u8>),
+    Stream(WriteFn<'a>),
 }
 
-impl OutputSet {
+impl std::fmt::Debug for Content<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Content::Bytes(b) => write!(f, "{} bytes", b.len()),
+            Content::Stream(_) => f.write_str("streamed"),
+        }
+    }
+}
+
+/// The files one run reads and writes, written together at the end (all or none).
+#[derive(Debug, Default)]
+pub struct OutputSet<'a> {
+    inputs: Vec<(PathBuf, FileId)>,
+    outputs: Vec<(String, PathBuf, Content<'a>)>,
+}
+
+impl<'a> OutputSet<'a> {
     pub fn new() -> Self {
         Self::default()
     }
@@ -137,7 +156,22 @@ impl OutputSet {
     /// Adds an output, `what` naming it in messages (e.g. "--csv").
     pub fn add(&mut self, what: &str, path: &Path, bytes: Vec<u8>) {
         self.outputs
-            .push((what.to_string(), path.to_path_buf(), bytes));
+            .push((what.to_string(), path.to_path_buf(), Content::Bytes(bytes)));
+    }
+
+    /// Adds an output written by `write` into its temporary file when the set is written (after
+    /// every check), so that it need not be held in memory; the rest as [`OutputSet::add`].
+    pub fn add_stream(
+        &mut self,
+        what: &str,
+        path: &Path,
+        write: impl FnOnce(&mut dyn Write) -> std::io::Result<()> + 'a,
+    ) {
+        self.outputs.push((
+            what.to_string(),
+            path.to_path_buf(),
+            Content::Stream(Box::new(write)),
+        ));
     }
 
     /// Where a path really lands: through a symlink, at its target.
@@ -223,25 +257,36 @@ impl OutputSet {
     /// Checks, then writes every output: all to temporary files first, then renamed into place.
     pub fn write_all(self) -> Result<(), IoError> {
         let targets = self.check()?;
-        let mut staged: Vec<(PathBuf, PathBuf, &Path)> = Vec::new();
-        let cleanup = |staged: &[(PathBuf, PathBuf, &Path)]| {
+        let mut staged: Vec<(PathBuf, PathBuf, PathBuf)> = Vec::new();
+        let cleanup = |staged: &[(PathBuf, PathBuf, PathBuf)]| {
             for (tmp, _, _) in staged {
                 let _ = std::fs::remove_file(tmp);
             }
         };
-        for ((_, path, bytes), target) in self.outputs.iter().zip(&targets) {
+        for ((_, path, content), target) in self.outputs.into_iter().zip(&targets) {
             let dir = target.parent().unwrap_or(Path::new("."));
             let name = target.file_name().unwrap_or_default().to_string_lossy();
             let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
             let r = (|| {
-                let mut f = std::fs::File::create(&tmp)?;
-                f.write_all(bytes)?;
+                let f = std::fs::File::create(&tmp)?;
+                let f = match content {
+                    Content::Bytes(bytes) => {
+                        let mut f = f;
+                        f.write_all(&bytes)?;
+                        f
+                    }
+                    Content::Stream(write) => {
+                        let mut w = std::io::BufWriter::with_capacity(1 << 16, f);
+                        write(&mut w)?;
+                        w.into_inner().map_err(|e| e.into_error())?
+                    }
+                };
                 f.sync_all()
             })();
             if let Err(e) = r {
                 let _ = std::fs::remove_file(&tmp);
                 cleanup(&staged);
-                return Err(write_err(path, e.to_string()));
+                return Err(write_err(&path, e.to_string()));
             }
             staged.push((tmp, target.clone(), path));
         }

@@ -10,9 +10,10 @@ fn finish(w: ::csv::Writer<Vec<u8>>) -> Vec<u8> {
     w.into_inner().unwrap_or_default()
 }
 
-/// One row per held step: time, phase, posture, torques, and per half-joint load, capacity and U.
-pub fn plan_csv(p: &Plan) -> Vec<u8> {
-    let mut w = writer();
+/// One row per held step: time, phase, posture, torques, and per half-joint load, capacity and U,
+/// written into `out` row by row (a long plan's timeline is hundreds of megabytes).
+pub fn write_plan_csv(p: &Plan, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let mut w = ::csv::WriterBuilder::new().from_writer(out);
     let mut head: Vec<String> = ["t_s", "duration_s", "cycle", "phase"]
         .iter()
         .map(|s| s.to_string())
@@ -24,16 +25,18 @@ pub fn plan_csv(p: &Plan) -> Vec<u8> {
         head.push(format!("capacity_{h}"));
         head.push(format!("u_{h}_min"));
     }
-    let _ = w.write_record(&head);
+    w.write_record(&head)?;
     let st = &p.steps;
+    let mut row: Vec<String> = Vec::with_capacity(head.len());
     for i in 0..st.t_s.len() {
         let pr = &p.postures[st.posture[i]];
-        let mut row: Vec<String> = vec![
+        row.clear();
+        row.extend([
             st.t_s[i].to_string(),
             st.duration_s[i].to_string(),
             st.cycle[i].to_string(),
             st.phase[i].clone(),
-        ];
+        ]);
         row.extend(pr.q_rad.iter().map(|v| v.to_string()));
         row.extend(pr.torque_nm.iter().map(|v| v.to_string()));
         for h in 0..p.half_joint_ids.len() {
@@ -41,9 +44,9 @@ pub fn plan_csv(p: &Plan) -> Vec<u8> {
             row.push(st.capacity[i][h].to_string());
             row.push(st.fatigue_u_min[i][h].to_string());
         }
-        let _ = w.write_record(&row);
+        w.write_record(&row)?;
     }
-    finish(w)
+    w.flush()
 }
 
 /// The plan as a recording for `posture-opt evaluate`: one sample at the start of every step

@@ -121,11 +121,11 @@ pub fn print_json(v: &impl serde::Serialize) -> anyhow::Result<()> {
 }
 
 /// The outputs of one run, checked against its inputs, written all or none.
-pub struct Outputs {
-    set: OutputSet,
+pub struct Outputs<'a> {
+    set: OutputSet<'a>,
 }
 
-impl Outputs {
+impl<'a> Outputs<'a> {
     pub fn new(inputs: &[&Path]) -> Self {
         let mut set = OutputSet::new();
         for p in inputs {
@@ -143,6 +143,17 @@ impl Outputs {
             self.set.add(what, p, bytes()?);
         }
         Ok(())
+    }
+    /// An output written by `write` as it is produced, when the set is written.
+    pub fn add_stream(
+        &mut self,
+        what: &str,
+        path: &Option<PathBuf>,
+        write: impl FnOnce(&mut dyn Write) -> std::io::Result<()> + 'a,
+    ) {
+        if let Some(p) = path {
+            self.set.add_stream(what, p, write);
+        }
     }
     /// Checks every output before the (possibly long) work starts.
     pub fn precheck(paths: &[(&str, &Option<PathBuf>)], inputs: &[&Path]) -> anyhow::Result<()> {

@@ -39,7 +39,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     let plan = plan_task_with(&task, a.assess.plan_options()).map_err(|e| anyhow::anyhow!(e))?;
     let assessment = assess(&task, &plan, a.assess.capacity_floor);
     let mut out = Outputs::new(&inputs);
-    out.add("--csv", &a.csv, || Ok(csv::plan_csv(&plan)))?;
+    out.add_stream("--csv", &a.csv, |w| csv::write_plan_csv(&plan, w));
     out.add("--recording", &a.recording, || {
         Ok(csv::plan_recording_csv(&plan))
     })?;
