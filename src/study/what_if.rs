@@ -79,6 +79,14 @@ impl Figures {
     /// What changes from these figures to `after`, in words, one item per figure.
     pub fn changes_to(&self, after: &Figures) -> Vec<String> {
         let mut v = Vec::new();
+        // a plan that gives out stops there: its figures per hour and its lowest capacity are of
+        // that shortened run, so whether a group gives out is said first
+        if self.exhausted && !after.exhausted {
+            v.push(
+                "whether a muscle group gives out: yes → no (as planned one does and the plan stops there: its figures after this are of that shortened run)"
+                    .into(),
+            );
+        }
         if self.zone_excess_deg > 0.0 || after.zone_excess_deg > 0.0 {
             v.push(format!(
                 "postures beyond the acceptable zones (ISO 11226 / EN 1005-4) by {:.0}° → {:.0}° (summed over phases)",
@@ -442,6 +450,31 @@ mod tests {
         rank(&mut v);
         let order: Vec<f64> = v.iter().map(|w| w.after.u_per_hour_min).collect();
         assert_eq!(order, [60.0, 90.0, 40.0, 50.0]);
+    }
+
+    /// A change after which no group gives out, where the plan has one give out, says so before
+    /// the figures per hour (those of the plan that gives out are of a shortened run); the other
+    /// way round it says so after them; neither when both or none give out.
+    #[test]
+    fn ending_an_exhaustion_is_said_first() {
+        let (mut before, after) = (figures(130.0), figures(120.0));
+        before.exhausted = true;
+        let v = before.changes_to(&after);
+        assert!(
+            v[0].starts_with("whether a muscle group gives out: yes → no"),
+            "{v:?}"
+        );
+        let v = after.changes_to(&before);
+        assert!(
+            v.last().unwrap().contains("exhausted within the task"),
+            "{v:?}"
+        );
+        assert!(!v.iter().any(|s| s.contains("yes → no")));
+        let v = figures(130.0).changes_to(&figures(120.0));
+        assert!(
+            !v.iter()
+                .any(|s| s.contains("gives out") || s.contains("exhausted"))
+        );
     }
 
     /// The verdict recommends the first ranked change that is doable, finished, exhausts no
