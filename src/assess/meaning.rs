@@ -72,7 +72,7 @@ pub fn last_cycle_loads(task: &Task, plan: &Plan) -> Vec<Vec<f64>> {
         } else {
             task.phases
                 .iter()
-                .position(|p| p.name == st.phase[i])
+                .position(|p| p.name == st.phase(i))
                 .unwrap_or(0)
         };
         loads[idx] = pr.load.clone();

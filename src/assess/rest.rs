@@ -113,7 +113,7 @@ fn cycle_postures(task: &Task, plan: &Plan) -> Option<Vec<Vec<usize>>> {
     let mut cycles: Vec<Vec<usize>> = vec![Vec::with_capacity(task.phases.len()); done];
     let st = &plan.steps;
     for i in 0..st.t_s.len() {
-        if st.phase[i] == "rest" && plan.postures[st.posture[i]].phase == "rest" {
+        if st.phase(i) == "rest" && plan.postures[st.posture[i]].phase == "rest" {
             continue;
         }
         if let Some(c) = cycles.get_mut(st.cycle[i] as usize) {

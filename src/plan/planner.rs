@@ -952,7 +952,14 @@ impl<'t> Planner<'t> {
             .map(|p| self.groups.iter().position(|g| g.contains(&p)).unwrap_or(0))
             .collect();
 
-        let mut steps = Steps::default();
+        let mut phase_names: Vec<String> = t.phases.iter().map(|p| p.name.clone()).collect();
+        phase_names.push("rest".to_string());
+        let mut steps = Steps::new(
+            t.fatigue.clone(),
+            state.to_vec(),
+            postures.iter().map(|p| p.load.clone()).collect(),
+            phase_names,
+        );
         let mut time = 0.0;
         let mut exhaustion: Option<Exhaustion> = None;
         let mut cycles_done = 0;
@@ -994,6 +1001,7 @@ impl<'t> Planner<'t> {
                     last_plan_cycle = cycle;
                     last_plan_t = time;
                     if lowers {
+                        let known = postures.len();
                         record(
                             self,
                             &gp,
@@ -1002,6 +1010,9 @@ impl<'t> Planner<'t> {
                             &mut group_posture_index,
                             &mut group_loads,
                         );
+                        for p in &postures[known..] {
+                            steps.add_posture_loads(p.load.clone());
+                        }
                         replans += 1;
                     } else {
                         gp = held;
@@ -1019,11 +1030,8 @@ impl<'t> Planner<'t> {
                 } else {
                     (&"rest".to_string(), rest_index, t.rest_s)
                 };
-                let f = if si < n_ph {
-                    &group_loads[group_of[si]]
-                } else {
-                    &self.rest_loads
-                };
+                // the posture's loads, as the plan's timeline replays them (Steps::replay)
+                let f = &postures[pidx].load;
                 let mut dur = dur;
                 let mut ex: Option<(f64, usize)> = None;
                 for h in 0..nh {
@@ -1056,17 +1064,7 @@ impl<'t> Planner<'t> {
                         lowest = (state[h].capacity, h, time + dur);
                     }
                 }
-                steps.t_s.push(time);
-                steps.duration_s.push(dur);
-                steps.phase.push(name.clone());
-                steps.cycle.push(cycle);
-                steps.posture.push(pidx);
-                steps
-                    .capacity
-                    .push(state.iter().map(|s| s.capacity).collect());
-                steps
-                    .fatigue_u_min
-                    .push(state.iter().map(|s| s.fatigue_u_min).collect());
+                steps.push(time, dur, cycle, pidx, si);
                 time += dur;
                 if exhaustion.is_some() {
                     break 'cycles;

@@ -5,7 +5,7 @@
 //! loads and strengths depend only on the posture and the hand forces, so they live with the
 //! `postures` that steps refer to by index.
 
-use crate::fatigue::Recovery;
+use crate::fatigue::{MaParams, MaState, Recovery};
 use crate::plan::search::SearchStats;
 use crate::plan::sqp::SqpOutcome;
 use serde::Serialize;
@@ -58,17 +58,189 @@ pub struct PostureRecord {
 }
 
 /// The held steps, as columns.
-#[derive(Debug, Clone, Serialize, Default)]
+///
+/// Capacity and U at each step's end are not stored: they are replayed from the state at the
+/// start with the exact update of each step ([`MaParams::hold`] with its posture's loads and its
+/// duration, the same operations in the same order as the plan's own run, so bit for bit the
+/// same numbers), so that a plan's memory does not grow with its number of steps beyond a few
+/// numbers per step. [`Steps::replay`] walks them; the plan document serialises them as the
+/// columns `capacity` and `fatigue_u_min`.
+#[derive(Debug, Clone, Default)]
 pub struct Steps {
     pub t_s: Vec<f64>,
     pub duration_s: Vec<f64>,
-    pub phase: Vec<String>,
     pub cycle: Vec<u32>,
     /// Index into `postures`.
     pub posture: Vec<usize>,
-    /// Per step, per half-joint: capacity and fatigue index \[min\] at the step's end.
-    pub capacity: Vec<Vec<f64>>,
-    pub fatigue_u_min: Vec<Vec<f64>>,
+    /// Index into `phase_names`.
+    phase: Vec<u32>,
+    phase_names: Vec<String>,
+    /// Per half-joint: its parameters and its state when the first step starts.
+    params: Vec<MaParams>,
+    start: Vec<MaState>,
+    /// Per posture (as `postures`), the relative load of each half-joint.
+    loads: Vec<Vec<f64>>,
+}
+
+impl Steps {
+    /// No steps yet: a run of the half-joints `params` from `start`, whose postures (by index)
+    /// load the half-joints as `loads`, and whose steps are named from `phase_names`.
+    pub fn new(
+        params: Vec<MaParams>,
+        start: Vec<MaState>,
+        loads: Vec<Vec<f64>>,
+        phase_names: Vec<String>,
+    ) -> Self {
+        Steps {
+            params,
+            start,
+            loads,
+            phase_names,
+            ..Default::default()
+        }
+    }
+
+    /// Appends a step: its start, duration, cycle, posture index and phase (an index into the
+    /// names given to [`Steps::new`]).
+    pub fn push(&mut self, t_s: f64, duration_s: f64, cycle: u32, posture: usize, phase: usize) {
+        self.t_s.push(t_s);
+        self.duration_s.push(duration_s);
+        self.cycle.push(cycle);
+        self.posture.push(posture);
+        self.phase.push(phase as u32);
+    }
+
+    /// Adds a posture's loads (the plan records a new posture at a re-plan).
+    pub fn add_posture_loads(&mut self, load: Vec<f64>) {
+        self.loads.push(load);
+    }
+
+    /// Number of steps.
+    pub fn len(&self) -> usize {
+        self.t_s.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.t_s.is_empty()
+    }
+
+    /// The phase of step `i` ("rest" for the rest between cycles).
+    pub fn phase(&self, i: usize) -> &str {
+        &self.phase_names[self.phase[i] as usize]
+    }
+
+    /// Half-joint `h`'s state at the end of each step, in order, with the step's end time \[s\]
+    /// (the same numbers as [`Steps::replay`]'s, for one half-joint only).
+    pub fn course(&self, h: usize) -> impl Iterator<Item = (f64, MaState)> + '_ {
+        let p = self.params[h];
+        let mut state = self.start[h];
+        (0..self.len()).map(move |i| {
+            p.hold(
+                &mut state,
+                self.loads[self.posture[i]][h],
+                self.duration_s[i],
+            );
+            (self.t_s[i] + self.duration_s[i], state)
+        })
+    }
+
+    /// The half-joints' states at each step's end, in order.
+    pub fn replay(&self) -> Replay<'_> {
+        Replay {
+            steps: self,
+            next: 0,
+            state: self.start.clone(),
+        }
+    }
+}
+
+/// The half-joints' states at the end of each step in turn ([`Steps::replay`]).
+#[derive(Debug, Clone)]
+pub struct Replay<'a> {
+    steps: &'a Steps,
+    next: usize,
+    state: Vec<MaState>,
+}
+
+impl Replay<'_> {
+    /// The state at the end of the next step (per half-joint), or None after the last.
+    #[allow(clippy::should_implement_trait)]
+    pub fn next(&mut self) -> Option<&[MaState]> {
+        let st = self.steps;
+        let i = self.next;
+        if i >= st.len() {
+            return None;
+        }
+        self.next += 1;
+        let f = &st.loads[st.posture[i]];
+        for ((p, s), &fh) in st.params.iter().zip(self.state.iter_mut()).zip(f) {
+            p.hold(s, fh, st.duration_s[i]);
+        }
+        Some(&self.state)
+    }
+}
+
+/// One column of replayed states, serialised as an array of rows as it is replayed.
+struct ReplayedColumn<'a> {
+    steps: &'a Steps,
+    capacity: bool,
+}
+
+impl Serialize for ReplayedColumn<'_> {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeSeq;
+        let mut seq = ser.serialize_seq(Some(self.steps.len()))?;
+        let mut r = self.steps.replay();
+        let mut row = Vec::with_capacity(self.steps.params.len());
+        while let Some(states) = r.next() {
+            row.clear();
+            row.extend(states.iter().map(|s| {
+                if self.capacity {
+                    s.capacity
+                } else {
+                    s.fatigue_u_min
+                }
+            }));
+            seq.serialize_element(&row)?;
+        }
+        seq.end()
+    }
+}
+
+/// The phase column, serialised as names.
+struct PhaseColumn<'a>(&'a Steps);
+
+impl Serialize for PhaseColumn<'_> {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        ser.collect_seq((0..self.0.len()).map(|i| self.0.phase(i)))
+    }
+}
+
+impl Serialize for Steps {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = ser.serialize_struct("Steps", 7)?;
+        st.serialize_field("t_s", &self.t_s)?;
+        st.serialize_field("duration_s", &self.duration_s)?;
+        st.serialize_field("phase", &PhaseColumn(self))?;
+        st.serialize_field("cycle", &self.cycle)?;
+        st.serialize_field("posture", &self.posture)?;
+        st.serialize_field(
+            "capacity",
+            &ReplayedColumn {
+                steps: self,
+                capacity: true,
+            },
+        )?;
+        st.serialize_field(
+            "fatigue_u_min",
+            &ReplayedColumn {
+                steps: self,
+                capacity: false,
+            },
+        )?;
+        st.end()
+    }
 }
 
 /// When a muscle group can no longer hold its load.

@@ -28,21 +28,26 @@ pub fn write_plan_csv(p: &Plan, out: &mut dyn std::io::Write) -> std::io::Result
     w.write_record(&head)?;
     let st = &p.steps;
     let mut row: Vec<String> = Vec::with_capacity(head.len());
-    for i in 0..st.t_s.len() {
+    let mut states = st.replay();
+    for i in 0..st.len() {
         let pr = &p.postures[st.posture[i]];
+        let state = states.next().unwrap_or_default();
         row.clear();
         row.extend([
             st.t_s[i].to_string(),
             st.duration_s[i].to_string(),
             st.cycle[i].to_string(),
-            st.phase[i].clone(),
+            st.phase(i).to_string(),
         ]);
         row.extend(pr.q_rad.iter().map(|v| v.to_string()));
         row.extend(pr.torque_nm.iter().map(|v| v.to_string()));
         for h in 0..p.half_joint_ids.len() {
             row.push(pr.load[h].to_string());
-            row.push(st.capacity[i][h].to_string());
-            row.push(st.fatigue_u_min[i][h].to_string());
+            let (c, u) = state
+                .get(h)
+                .map_or((f64::NAN, f64::NAN), |s| (s.capacity, s.fatigue_u_min));
+            row.push(c.to_string());
+            row.push(u.to_string());
         }
         w.write_record(&row)?;
     }

@@ -218,9 +218,10 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
 
 /// The plan's excess beyond the acceptable zones \[deg\], summed over phases and zones.
 fn zone_excess_deg(plan: &Plan) -> f64 {
+    // a fold from +0 (an empty f64 sum is −0, printed "-0°")
     (0..plan.summary.phases.len())
         .map(|p| phase_zone_excess_deg(plan, p))
-        .sum()
+        .fold(0.0, |a, x| a + x)
 }
 
 /// Phase `p`'s excess beyond the acceptable zones \[deg\], summed over zones.
@@ -229,7 +230,7 @@ fn phase_zone_excess_deg(plan: &Plan, p: usize) -> f64 {
         x.outside_zones
             .iter()
             .map(|z| z.angle_deg - z.limit_deg)
-            .sum()
+            .fold(0.0, |a, x| a + x)
     })
 }
 

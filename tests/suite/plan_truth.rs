@@ -42,11 +42,13 @@ fn assert_timeline_is_the_replay(plan: &Plan, what: &str) {
         .collect();
     let mut state = vec![MaState::FRESH; params.len()];
     let st = &plan.steps;
-    for i in 0..st.t_s.len() {
+    let mut timeline = st.replay();
+    for i in 0..st.len() {
         let loads = &plan.postures[st.posture[i]].load;
+        let row = timeline.next().expect("one state per step");
         for (h, p) in params.iter().enumerate() {
             p.hold(&mut state[h], loads[h], st.duration_s[i]);
-            let (c, u) = (st.capacity[i][h], st.fatigue_u_min[i][h]);
+            let (c, u) = (row[h].capacity, row[h].fatigue_u_min);
             assert!(
                 (c - state[h].capacity).abs() <= 1e-9 * state[h].capacity.max(1e-12),
                 "{what}: step {i}, {}: capacity {c} vs replay {}",
@@ -60,6 +62,16 @@ fn assert_timeline_is_the_replay(plan: &Plan, what: &str) {
                 state[h].fatigue_u_min
             );
         }
+    }
+    assert!(timeline.next().is_none(), "{what}: more states than steps");
+    for (h, s) in state.iter().enumerate() {
+        assert!(
+            (plan.summary.final_capacity[h] - s.capacity).abs() <= 1e-9,
+            "{what}: {} final capacity {} vs replay {}",
+            plan.half_joints[h].id,
+            plan.summary.final_capacity[h],
+            s.capacity
+        );
     }
     let total: f64 = state.iter().map(|s| s.fatigue_u_min).sum();
     assert!(

@@ -32,14 +32,14 @@ pub fn phase_strain(task: &Task, plan: &Plan) -> Vec<PhaseStrain> {
     let nh = plan.half_joints.len();
     let mut loads: Vec<Option<Vec<f64>>> = vec![None; task.phases.len()];
     let st = &plan.steps;
-    for i in 0..st.t_s.len().min(st.phase.len()).min(st.posture.len()) {
+    for i in 0..st.len() {
         let Some(pr) = plan.postures.get(st.posture[i]) else {
             continue;
         };
-        if pr.phase == "rest" && st.phase[i] == "rest" {
+        if pr.phase == "rest" && st.phase(i) == "rest" {
             continue;
         }
-        if let Some(p) = task.phases.iter().position(|p| p.name == st.phase[i]) {
+        if let Some(p) = task.phases.iter().position(|p| p.name == st.phase(i)) {
             loads[p] = Some(pr.load.clone());
         }
     }
@@ -111,14 +111,11 @@ pub fn group_courses(task: &Task, plan: &Plan, strain: &[PhaseStrain]) -> Vec<Gr
     let mut v: Vec<GroupCourse> = (0..nh)
         .map(|h| {
             let (mut lowest, mut lowest_t_s) = (1.0_f64, 0.0);
-            for (i, row) in st.capacity.iter().enumerate() {
-                if let Some(&c) = row.get(h)
-                    && c.is_finite()
-                    && c < lowest
-                {
+            for (t_end_s, state) in st.course(h) {
+                let c = state.capacity;
+                if c.is_finite() && c < lowest {
                     lowest = c;
-                    lowest_t_s = st.t_s.get(i).copied().unwrap_or(0.0)
-                        + st.duration_s.get(i).copied().unwrap_or(0.0);
+                    lowest_t_s = t_end_s;
                 }
             }
             let mut g = GroupCourse {
@@ -137,8 +134,8 @@ pub fn group_courses(task: &Task, plan: &Plan, strain: &[PhaseStrain]) -> Vec<Gr
             };
             // every posture held, not only the last plan's: re-planning moves load between
             // groups, and a group's highest load may come from an earlier plan
-            let held = st.posture.iter().zip(&st.phase).filter_map(|(&k, name)| {
-                let p = task.phases.iter().position(|p| &p.name == name)?;
+            let held = st.posture.iter().enumerate().filter_map(|(i, &k)| {
+                let p = task.phases.iter().position(|p| p.name == st.phase(i))?;
                 Some((p, plan.postures.get(k)?.load.get(h).copied()?))
             });
             let last = strain

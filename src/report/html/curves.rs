@@ -44,15 +44,11 @@ const SLICES: usize = 360;
 /// (t \[s\], capacity) at the start and at every step's end.
 fn series(plan: &Plan, h: usize) -> Vec<(f64, f64)> {
     let st = &plan.steps;
-    let mut v = Vec::with_capacity(st.t_s.len() + 1);
+    let mut v = Vec::with_capacity(st.len() + 1);
     v.push((0.0, 1.0));
-    for (i, row) in st.capacity.iter().enumerate() {
-        let t = st.t_s.get(i).copied().unwrap_or(f64::NAN)
-            + st.duration_s.get(i).copied().unwrap_or(0.0);
-        if let Some(&c) = row.get(h)
-            && t.is_finite()
-            && c.is_finite()
-        {
+    for (t, state) in st.course(h) {
+        let c = state.capacity;
+        if t.is_finite() && c.is_finite() {
             v.push((t, c));
         }
     }
@@ -184,7 +180,7 @@ pub fn capacity_figures(plan: &Plan, courses: &[GroupCourse], floor: f64) -> Str
         .zip(&plan.steps.duration_s)
         .map(|(t, d)| t + d)
         .fold(0.0, f64::max);
-    if plan.steps.capacity.is_empty() || t_end <= 0.0 {
+    if plan.steps.is_empty() || t_end <= 0.0 {
         return "<p class=\"meta\">No steps were simulated: there is no capacity curve to draw.</p>".into();
     }
     let tired: Vec<&GroupCourse> = courses.iter().filter(|c| c.lowest < 1.0 - 1e-6).collect();
