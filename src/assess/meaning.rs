@@ -296,13 +296,17 @@ pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
         let f = &plan.postures[st.posture[i]].load;
         let d = st.duration_s[i];
         for h in 0..nh {
+            let c0 = state[h].capacity;
+            params[h].hold(&mut state[h], f[h], d);
+            // capacity moves monotonically within a step held at one load, so the group gives
+            // out within it only if it ends at or below the load: only then is the time sought
             if r.exhaustion.is_none()
-                && let Some(te) = params[h].time_to_exhaustion_s(state[h].capacity, f[h])
+                && state[h].capacity <= f[h] * (1.0 + 1e-9)
+                && let Some(te) = params[h].time_to_exhaustion_s(c0, f[h])
                 && te < d
             {
                 r.exhaustion = Some((st.t_s[i] + te, h));
             }
-            params[h].hold(&mut state[h], f[h], d);
             if state[h].capacity < r.lowest_capacity {
                 r.lowest_capacity = state[h].capacity;
                 r.lowest_half_joint = h;

@@ -166,7 +166,9 @@ const C_FLOOR: f64 = f64::MIN_POSITIVE;
 /// Returns `(c1, ΔU)`; ΔU may be infinite when it exceeds a double.
 #[inline]
 pub fn step_exact(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> (f64, f64) {
-    if k * f + r <= 0.0 || t_min <= 0.0 {
+    // unloaded and fully rested: nothing changes (the common case of a muscle group the task
+    // never loads; its exact update returns the same numbers, bit for bit)
+    if k * f + r <= 0.0 || t_min <= 0.0 || (f == 0.0 && c0 == 1.0) {
         return (c0, 0.0);
     }
     let (c1, du) = super::schedule::Prepared::from_rates(k, f, r, t_min).apply(c0);
