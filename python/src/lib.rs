@@ -418,10 +418,10 @@ fn compare(
     py.detach(move || {
         let tasks = rebuild(&data)?;
         with_threads(threads, || match shard {
-            Some(s) => cmp::compare_shard(&names, &tasks, s, opts, capacity_floor)
+            Some(s) => cmp::compare_shard(&names, &tasks, s, opts, capacity_floor, &|| {})
                 .map_err(plan_err)
                 .and_then(|r| json(&r)),
-            None => cmp::compare(&names, &tasks, opts, capacity_floor)
+            None => cmp::compare(&names, &tasks, opts, capacity_floor, &|| {})
                 .map_err(plan_err)
                 .and_then(|(c, _)| json(&c)),
         })?

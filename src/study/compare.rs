@@ -633,29 +633,34 @@ pub fn plan_layouts(
     indices: &[usize],
     opts: PlanOptions,
     floor: f64,
+    on_done: &(dyn Fn() + Sync),
 ) -> Result<Vec<(LayoutOutcome, Planned)>, PlanError> {
     indices
         .par_iter()
         .map(|&i| {
             let plan = plan_task_with(&tasks[i], opts)?;
             let assessment = assess(&tasks[i], &plan, floor);
-            Ok((
+            let done = (
                 outcome(i, &files[i], &tasks[i], &plan, &assessment),
                 Planned { plan, assessment },
-            ))
+            );
+            on_done();
+            Ok(done)
         })
         .collect()
 }
 
-/// Plans every layout (in parallel) and ranks them. `files[i]` names `tasks[i]`.
+/// Plans every layout (in parallel) and ranks them. `files[i]` names `tasks[i]`; `on_done` is
+/// called as each layout's plan is done (a progress display).
 pub fn compare(
     files: &[String],
     tasks: &[Task],
     opts: PlanOptions,
     floor: f64,
+    on_done: &(dyn Fn() + Sync),
 ) -> Result<(Comparison, Vec<Planned>), PlanError> {
     let all: Vec<usize> = (0..tasks.len()).collect();
-    let results = plan_layouts(files, tasks, &all, opts, floor)?;
+    let results = plan_layouts(files, tasks, &all, opts, floor, on_done)?;
     let (outcomes, planned): (Vec<_>, Vec<_>) = results.into_iter().unzip();
     let c = Comparison::from_outcomes(outcomes, opts.adapt, opts.fatigue_only, floor);
     // planned in the ranking's order
@@ -675,9 +680,10 @@ pub fn compare_shard(
     shard: Shard,
     opts: PlanOptions,
     floor: f64,
+    on_done: &(dyn Fn() + Sync),
 ) -> Result<CompareShard, PlanError> {
     let idx = shard.indices(tasks.len());
-    let results = plan_layouts(files, tasks, &idx, opts, floor)?;
+    let results = plan_layouts(files, tasks, &idx, opts, floor, on_done)?;
     Ok(CompareShard {
         kind: SHARD_KIND.into(),
         shard: shard.to_string(),

@@ -104,7 +104,7 @@ fn compare_html() -> &'static (String, Comparison) {
             ..PlanOptions::default()
         };
         let (c, planned): (Comparison, Vec<Planned>) =
-            compare::compare(&files, &tasks, opts, 0.7).unwrap();
+            compare::compare(&files, &tasks, opts, 0.7, &|| {}).unwrap();
         let ordered: Vec<&Task> = c.layouts.iter().map(|o| &tasks[o.index]).collect();
         (compare_report(&c, &ordered, &planned).unwrap(), c)
     })

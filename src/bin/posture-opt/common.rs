@@ -42,6 +42,19 @@ pub fn say(msg: std::fmt::Arguments) {
     let _ = e.write_fmt(msg).and_then(|_| e.write_all(b"\n"));
 }
 
+/// A progress bar on standard error over `n` items named `what` ("workers", "layouts"), with the
+/// time elapsed and an estimate of the time left; drawn only when standard error is a terminal.
+pub fn progress_bar(n: usize, what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(n as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(&format!(
+            "{{bar:40}} {{pos}}/{{len}} {what}, {{elapsed}} elapsed, about {{eta}} left"
+        ))
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
 /// Whether standard output was closed when the program started (`>&-`). Rust's runtime puts
 /// /dev/null on a closed standard descriptor before `main`, so every write would succeed and the
 /// answer be lost; the descriptor is therefore looked at before that, by a constructor the

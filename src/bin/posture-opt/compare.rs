@@ -45,14 +45,33 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         inputs.extend(t.input_files.iter().map(|p| p.as_path()));
     }
     let opts = a.assess.plan_options();
+    let todo = a
+        .shard
+        .map_or(tasks.len(), |s| s.indices(tasks.len()).len());
+    let bar = crate::common::progress_bar(todo, "layouts");
+    if todo > 4 {
+        crate::common::say(format_args!(
+            "planning {todo} layouts; each takes seconds to a minute (one at a time per core)"
+        ));
+    }
+    let on_done = || bar.inc(1);
     if let Some(shard) = a.shard {
-        let s = compare::compare_shard(&names, &tasks, shard, opts, a.assess.capacity_floor)
-            .map_err(|e| anyhow::anyhow!(e))?;
+        let s = compare::compare_shard(
+            &names,
+            &tasks,
+            shard,
+            opts,
+            a.assess.capacity_floor,
+            &on_done,
+        )
+        .map_err(|e| anyhow::anyhow!(e))?;
+        bar.finish_and_clear();
         return print_json(&s);
     }
     Outputs::precheck(&[("--report", &a.assess.report)], &inputs)?;
-    let (c, planned) = compare::compare(&names, &tasks, opts, a.assess.capacity_floor)
+    let (c, planned) = compare::compare(&names, &tasks, opts, a.assess.capacity_floor, &on_done)
         .map_err(|e| anyhow::anyhow!(e))?;
+    bar.finish_and_clear();
     let mut out = Outputs::new(&inputs);
     out.add("--report", &a.assess.report, || {
         let ordered: Vec<&Task> = c.layouts.iter().map(|o| &tasks[o.index]).collect();

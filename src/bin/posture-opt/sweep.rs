@@ -68,13 +68,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     Outputs::precheck(&[("--report", &a.assess.report)], &inputs)?;
     let opts = a.assess.plan_options();
     let started = std::time::Instant::now();
-    let bar = indicatif::ProgressBar::new(todo as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:40} {pos}/{len} workers, {elapsed} elapsed, about {eta} left",
-        )
-        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
+    let bar = crate::common::progress_bar(todo, "workers");
     if todo > 6 {
         crate::common::say(format_args!(
             "planning {todo} workers; each takes seconds to a minute (two plans run at a time per core pair)"
