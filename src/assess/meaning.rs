@@ -299,9 +299,10 @@ pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
             let c0 = state[h].capacity;
             params[h].hold(&mut state[h], f[h], d);
             // capacity moves monotonically within a step held at one load, so the group gives
-            // out within it only if it ends at or below the load: only then is the time sought
+            // out within it only if it starts or ends at or below the load: only then is the
+            // time sought (a group that starts below its load may recover above it by the end)
             if r.exhaustion.is_none()
-                && state[h].capacity <= f[h] * (1.0 + 1e-9)
+                && (c0 <= f[h] || state[h].capacity <= f[h] * (1.0 + 1e-9))
                 && let Some(te) = params[h].time_to_exhaustion_s(c0, f[h])
                 && te < d
             {

@@ -954,12 +954,7 @@ impl<'t> Planner<'t> {
 
         let mut phase_names: Vec<String> = t.phases.iter().map(|p| p.name.clone()).collect();
         phase_names.push("rest".to_string());
-        let mut steps = Steps::new(
-            t.fatigue.clone(),
-            state.to_vec(),
-            postures.iter().map(|p| p.load.clone()).collect(),
-            phase_names,
-        );
+        let mut steps = Steps::new(t.fatigue.clone(), state.to_vec(), phase_names);
         let mut time = 0.0;
         let mut exhaustion: Option<Exhaustion> = None;
         let mut cycles_done = 0;
@@ -1001,7 +996,6 @@ impl<'t> Planner<'t> {
                     last_plan_cycle = cycle;
                     last_plan_t = time;
                     if lowers {
-                        let known = postures.len();
                         record(
                             self,
                             &gp,
@@ -1010,9 +1004,6 @@ impl<'t> Planner<'t> {
                             &mut group_posture_index,
                             &mut group_loads,
                         );
-                        for p in &postures[known..] {
-                            steps.add_posture_loads(p.load.clone());
-                        }
                         replans += 1;
                     } else {
                         gp = held;
@@ -1079,6 +1070,7 @@ impl<'t> Planner<'t> {
             .fold((0, f64::MIN), |a, b| if b.1 > a.1 { b } else { a });
         let phases = self.phase_summaries(&gp, &group_loads);
         let (rest_clear, rest_closest) = self.clearance_of(&q_rest);
+        steps.set_posture_loads(postures.iter().map(|p| p.load.clone()).collect());
         Ok(Plan {
             task: t.name.clone(),
             robot: t.robot.clone(),

@@ -83,18 +83,13 @@ pub struct Steps {
 }
 
 impl Steps {
-    /// No steps yet: a run of the half-joints `params` from `start`, whose postures (by index)
-    /// load the half-joints as `loads`, and whose steps are named from `phase_names`.
-    pub fn new(
-        params: Vec<MaParams>,
-        start: Vec<MaState>,
-        loads: Vec<Vec<f64>>,
-        phase_names: Vec<String>,
-    ) -> Self {
+    /// No steps yet: a run of the half-joints `params` from `start`, whose steps are named from
+    /// `phase_names`. The postures' loads are given once the run is over
+    /// ([`Steps::set_posture_loads`]).
+    pub fn new(params: Vec<MaParams>, start: Vec<MaState>, phase_names: Vec<String>) -> Self {
         Steps {
             params,
             start,
-            loads,
             phase_names,
             ..Default::default()
         }
@@ -110,9 +105,10 @@ impl Steps {
         self.phase.push(phase as u32);
     }
 
-    /// Adds a posture's loads (the plan records a new posture at a re-plan).
-    pub fn add_posture_loads(&mut self, load: Vec<f64>) {
-        self.loads.push(load);
+    /// The relative load of each half-joint in each posture the steps refer to (the plan's
+    /// `postures`, in order), from which capacity and U are replayed.
+    pub fn set_posture_loads(&mut self, loads: Vec<Vec<f64>>) {
+        self.loads = loads;
     }
 
     /// Number of steps.
