@@ -66,7 +66,7 @@ pub const AT_LIMIT_FRACTION: f64 = 0.01;
 pub const END_ZONE: f64 = 0.1;
 
 /// A cost of one phase's posture in terms of the half-joints' loads in that phase.
-pub trait LoadCost {
+pub trait LoadCost: Send + Sync {
     /// Value; fills `grad[h] = ∂J/∂f_h` and `curv[h] ≥ 0`, a diagonal curvature bound.
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64;
     /// Value only.
@@ -76,6 +76,8 @@ pub trait LoadCost {
     fn capacity_bound(&mut self, _h: usize, _f: f64) -> Option<(f64, f64)> {
         None
     }
+    /// A copy for a solve on another thread (its caches, if any, give the same numbers).
+    fn fork(&self) -> Box<dyn LoadCost + '_>;
 }
 
 /// The fatigue cost of one phase (a group of phases sharing a posture) over the remaining task.
@@ -284,6 +286,9 @@ fn log_sum(terms: &[(f64, f64)], weights: &mut [f64]) -> f64 {
 }
 
 impl LoadCost for FatigueCost<'_> {
+    fn fork(&self) -> Box<dyn LoadCost + '_> {
+        Box::new(self.clone())
+    }
     fn capacity_bound(&mut self, h: usize, f: f64) -> Option<(f64, f64)> {
         if let Some((b, r)) = self.bound_cache[h]
             && b == f.to_bits()
@@ -336,6 +341,9 @@ impl LoadCost for FatigueCost<'_> {
 pub struct SquaredLoads;
 
 impl LoadCost for SquaredLoads {
+    fn fork(&self) -> Box<dyn LoadCost + '_> {
+        Box::new(*self)
+    }
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64 {
         for (i, &x) in f.iter().enumerate() {
             grad[i] = 2.0 * x;
@@ -353,6 +361,9 @@ impl LoadCost for SquaredLoads {
 pub struct NoLoadCost;
 
 impl LoadCost for NoLoadCost {
+    fn fork(&self) -> Box<dyn LoadCost + '_> {
+        Box::new(*self)
+    }
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64 {
         for i in 0..f.len() {
             grad[i] = 0.0;

@@ -237,7 +237,7 @@ impl<'t> Planner<'t> {
             .collect();
         Ok(Planner {
             task,
-            qp_solves_before: solver.work.qp.solves,
+            qp_solves_before: solver.qp_solves(),
             solver,
             held,
             groups,
@@ -287,7 +287,7 @@ impl<'t> Planner<'t> {
 
     /// Interior-point iterations of all QP solves so far.
     pub fn ipm_iterations(&self) -> u64 {
-        self.solver.work.qp.ipm_iterations
+        self.solver.ipm_iterations()
     }
 
     fn loads_of(&mut self, q: &[f64], forces: &[Vector3<f64>; 2]) -> Vec<f64> {
@@ -814,7 +814,7 @@ impl<'t> Planner<'t> {
         let t = self.task;
         let nh = t.half_joints.len();
         let fresh = vec![MaState::FRESH; nh];
-        self.qp_solves_before = self.solver.work.qp.solves;
+        self.qp_solves_before = self.solver.qp_solves();
         self.solver.settings = opts.sqp;
         self.solver.work.settings = opts.sqp;
         self.solver.search = opts.search;
@@ -1119,7 +1119,7 @@ impl<'t> Planner<'t> {
                 final_capacity: state.iter().map(|s| s.capacity).collect(),
                 exhaustion,
                 replans,
-                qp_solves: self.solver.work.qp.solves - self.qp_solves_before,
+                qp_solves: self.solver.qp_solves() - self.qp_solves_before,
                 sqp_iterations,
                 passes,
                 phases,

@@ -1,6 +1,12 @@
 //! The posture QP, on a fixed sparsity pattern, solved by clarabel (the crate's only clarabel
-//! user). The solver is built once per pattern and its data updated in place between SQP
-//! iterations (presolve off).
+//! user). The solver is built at the first QP of each local solve and its data updated in place
+//! between that solve's SQP iterations (presolve off). It is built afresh for every local solve
+//! ([`PostureQp::forget_solver`]) because clarabel's data updates keep the equilibration of the
+//! QP the solver was built with: a reused solver made each solve depend on the solves before it
+//! (so on the order of the multi-start's seeds, and on which thread ran them). The clearance,
+//! balance and zone rows a short step cannot reach are left out of the solver's problem and the
+//! solution checked against them ([`PostureQp::solve`]); the solver is also rebuilt when a row
+//! is put back.
 //!
 //! Variables `x = [Δq (n), s⁺ (a), s⁻ (a), e⁺ (m), e⁻ (m), v_cap, v_geo, v_zone (z)]`: the posture step, the actuated
 //! joints' torques split by sign (`τ̄ + D Δq = s⁺ − s⁻`, so every half-joint's load `s±/MVC±` is
@@ -146,6 +152,21 @@ pub struct PostureQp {
     pub q: Vec<f64>,
     solver: Option<DefaultSolver<f64>>,
     settings: DefaultSettings<f64>,
+    /// Rows given to the solver (the others are inactive rows left out: [`Self::solve`]), and
+    /// each row's index among them (`usize::MAX`: left out).
+    kept: Vec<bool>,
+    red_row: Vec<usize>,
+    /// The kept rows' entries of A (indices into `a_nz`, in column order) and their values, and
+    /// the kept rows' right-hand sides.
+    red_idx: Vec<usize>,
+    red_nz: Vec<f64>,
+    red_b: Vec<f64>,
+    /// Scratch: each row's norm over the posture columns, and `Ax`.
+    row_norm: Vec<f64>,
+    ax: Vec<f64>,
+    want: Vec<bool>,
+    /// Whether inactive rows are left out (on by default; off solves every QP whole).
+    pub screen: bool,
     /// The last solution: primal x and dual z (clarabel's `Px + q + Aᵀz = 0`).
     pub x: Vec<f64>,
     pub z: Vec<f64>,
@@ -153,6 +174,15 @@ pub struct PostureQp {
     pub solves: u64,
     pub ipm_iterations: u64,
 }
+
+/// A screenable row is left out of a QP when its slack exceeds this multiple of its norm over
+/// the posture columns: no posture step shorter than this (rad or m, Euclidean) reaches it. The
+/// check after the solve puts back any row a longer step violates.
+const SCREEN_REACH: f64 = 0.05;
+
+/// A row left out is violated at the reduced solution when `A_i x − b_i` exceeds this times
+/// `1 + |b_i|`.
+const SCREEN_TOL: f64 = 1e-9;
 
 /// Solver precision of the QP (clarabel's gap and feasibility tolerances).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -273,6 +303,15 @@ impl PostureQp {
             q: vec![0.0; cols.n_var],
             solver: None,
             settings,
+            kept: vec![true; rows.n_row],
+            red_row: (0..rows.n_row).collect(),
+            red_idx: Vec::new(),
+            red_nz: Vec::new(),
+            red_b: Vec::new(),
+            row_norm: vec![0.0; rows.n_row],
+            ax: vec![0.0; rows.n_row],
+            want: vec![true; rows.n_row],
+            screen: true,
             x: vec![0.0; cols.n_var],
             z: vec![0.0; rows.n_row],
             solves: 0,
@@ -292,6 +331,7 @@ impl PostureQp {
         qp.p_nz = vec![0.0; rowval.len()];
         qp.p_colptr = colptr;
         qp.p_rowval = rowval;
+        qp.forget_solver();
         Ok(qp)
     }
 
@@ -356,25 +396,6 @@ impl PostureQp {
         }
     }
 
-    fn csc_a(&self) -> CscMatrix<f64> {
-        let mut colptr = vec![0usize; self.cols.n_var + 1];
-        let mut rowval = Vec::with_capacity(self.a_pattern.len());
-        for &(row, col) in &self.a_pattern {
-            colptr[col + 1] += 1;
-            rowval.push(row);
-        }
-        for c in 0..self.cols.n_var {
-            colptr[c + 1] += colptr[c];
-        }
-        CscMatrix::new(
-            self.rows.n_row,
-            self.cols.n_var,
-            colptr,
-            rowval,
-            self.a_nz.clone(),
-        )
-    }
-
     fn csc_p(&self) -> CscMatrix<f64> {
         let n = self.cols.n_var;
         CscMatrix::new(
@@ -386,50 +407,172 @@ impl PostureQp {
         )
     }
 
+    /// A restricted to the kept rows (values from `red_nz`).
+    fn csc_a_kept(&self) -> CscMatrix<f64> {
+        let n_kept = self.red_b.len();
+        let mut colptr = vec![0usize; self.cols.n_var + 1];
+        let mut rowval = Vec::with_capacity(self.red_idx.len());
+        for &k in &self.red_idx {
+            let (row, col) = self.a_pattern[k];
+            colptr[col + 1] += 1;
+            rowval.push(self.red_row[row]);
+        }
+        for c in 0..self.cols.n_var {
+            colptr[c + 1] += colptr[c];
+        }
+        CscMatrix::new(n_kept, self.cols.n_var, colptr, rowval, self.red_nz.clone())
+    }
+
+    /// Drops the solver and the rows kept so far: the next [`Self::solve`] builds it from its
+    /// own data, so that its scaling and rows (and so its answer) do not depend on earlier QPs.
+    pub fn forget_solver(&mut self) {
+        self.solver = None;
+        let r = self.screenable();
+        self.kept[r].iter_mut().for_each(|k| *k = false);
+    }
+
+    /// The rows that may be left out: clearances, balance and posture zones (the dense rows
+    /// over the posture; the equalities, bounds, joint limits and capacity rows always stay).
+    fn screenable(&self) -> std::ops::Range<usize> {
+        self.rows.clearance..self.rows.n_row
+    }
+
+    /// Chooses the rows to give the solver: every row but the screenable ones that a short step
+    /// cannot reach — a row `A_i x ≤ b_i` whose slack at `x = 0` exceeds [`SCREEN_REACH`] times
+    /// its norm over the posture columns — and that no earlier QP of this local solve needed
+    /// (a row once given stays until [`Self::forget_solver`]: fewer re-solves and rebuilds).
+    fn choose_rows(&mut self, want: &mut [bool]) {
+        want.iter_mut().for_each(|w| *w = true);
+        if !self.screen {
+            return;
+        }
+        let n = self.sizes.n;
+        self.row_norm.iter_mut().for_each(|x| *x = 0.0);
+        for (k, &(r, c)) in self.a_pattern.iter().enumerate() {
+            if c < n {
+                self.row_norm[r] += self.a_nz[k] * self.a_nz[k];
+            }
+        }
+        for i in self.screenable() {
+            let reach = SCREEN_REACH * self.row_norm[i].sqrt();
+            want[i] = self.kept[i] || self.b[i] <= reach;
+        }
+    }
+
+    /// Sets the kept rows and their maps; returns whether they changed.
+    fn keep_rows(&mut self, want: &[bool]) -> bool {
+        let changed = want != self.kept.as_slice();
+        if changed || self.red_b.len() != self.kept.iter().filter(|&&k| k).count() {
+            self.kept.copy_from_slice(want);
+            let mut next = 0;
+            for (i, &k) in self.kept.iter().enumerate() {
+                self.red_row[i] = if k {
+                    next += 1;
+                    next - 1
+                } else {
+                    usize::MAX
+                };
+            }
+            self.red_idx.clear();
+            for (k, &(r, _)) in self.a_pattern.iter().enumerate() {
+                if self.kept[r] {
+                    self.red_idx.push(k);
+                }
+            }
+            self.red_nz.resize(self.red_idx.len(), 0.0);
+            self.red_b.resize(next, 0.0);
+        }
+        changed
+    }
+
     /// Solves with the staged data; returns whether clarabel reports a (nearly) solved problem.
+    ///
+    /// Rows that cannot be active are left out of the solver's problem (the clearance, balance
+    /// and zone rows are dense over the posture, and each one kept grows the factorisation of
+    /// every interior-point iteration); the solution is then checked against every row left out,
+    /// and any it violates is put back and the QP solved again. The reduced QP is a relaxation
+    /// of the whole one, so a solution of it that meets every row is the whole QP's solution.
     pub fn solve(&mut self) -> Result<bool, QpError> {
         self.gather_p();
-        match &mut self.solver {
-            Some(s) => {
-                s.update_P(&self.p_nz)
-                    .map_err(|e| QpError::Update(e.to_string()))?;
-                s.update_A(&self.a_nz)
-                    .map_err(|e| QpError::Update(e.to_string()))?;
-                s.update_q(&self.q)
-                    .map_err(|e| QpError::Update(e.to_string()))?;
-                s.update_b(&self.b)
-                    .map_err(|e| QpError::Update(e.to_string()))?;
+        let mut want = std::mem::take(&mut self.want);
+        self.choose_rows(&mut want);
+        loop {
+            let changed = self.keep_rows(&want);
+            for (j, &k) in self.red_idx.iter().enumerate() {
+                self.red_nz[j] = self.a_nz[k];
             }
-            None => {
-                let cones: [SupportedConeT<f64>; 2] = [
-                    ZeroConeT(self.rows.n_zero),
-                    NonnegativeConeT(self.rows.n_row - self.rows.n_zero),
-                ];
-                let s = DefaultSolver::new(
-                    &self.csc_p(),
-                    &self.q,
-                    &self.csc_a(),
-                    &self.b,
-                    &cones,
-                    self.settings.clone(),
-                )
-                .map_err(|e| QpError::Setup(e.to_string()))?;
-                self.solver = Some(s);
+            for (i, &k) in self.kept.iter().enumerate() {
+                if k {
+                    self.red_b[self.red_row[i]] = self.b[i];
+                }
             }
-        }
-        let s = self.solver.as_mut().expect("solver built above");
-        s.solve();
-        self.solves += 1;
-        self.ipm_iterations += u64::from(s.solution.iterations);
-        let ok = matches!(
-            s.solution.status,
-            SolverStatus::Solved | SolverStatus::AlmostSolved
-        );
-        if ok {
+            if changed {
+                self.solver = None;
+            }
+            match &mut self.solver {
+                Some(s) => {
+                    s.update_P(&self.p_nz)
+                        .map_err(|e| QpError::Update(e.to_string()))?;
+                    s.update_A(&self.red_nz)
+                        .map_err(|e| QpError::Update(e.to_string()))?;
+                    s.update_q(&self.q)
+                        .map_err(|e| QpError::Update(e.to_string()))?;
+                    s.update_b(&self.red_b)
+                        .map_err(|e| QpError::Update(e.to_string()))?;
+                }
+                None => {
+                    let n_kept = self.red_b.len();
+                    let cones: [SupportedConeT<f64>; 2] = [
+                        ZeroConeT(self.rows.n_zero),
+                        NonnegativeConeT(n_kept - self.rows.n_zero),
+                    ];
+                    let s = DefaultSolver::new(
+                        &self.csc_p(),
+                        &self.q,
+                        &self.csc_a_kept(),
+                        &self.red_b,
+                        &cones,
+                        self.settings.clone(),
+                    )
+                    .map_err(|e| QpError::Setup(e.to_string()))?;
+                    self.solver = Some(s);
+                }
+            }
+            let s = self.solver.as_mut().expect("solver built above");
+            s.solve();
+            self.solves += 1;
+            self.ipm_iterations += u64::from(s.solution.iterations);
+            let ok = matches!(
+                s.solution.status,
+                SolverStatus::Solved | SolverStatus::AlmostSolved
+            );
+            if !ok {
+                self.want = want;
+                return Ok(false);
+            }
             self.x.copy_from_slice(&s.solution.x);
-            self.z.copy_from_slice(&s.solution.z);
+            for (i, zi) in self.z.iter_mut().enumerate() {
+                *zi = match self.red_row[i] {
+                    usize::MAX => 0.0,
+                    r => s.solution.z[r],
+                };
+            }
+            // every row left out must hold at the solution
+            let mut ax = std::mem::take(&mut self.ax);
+            self.a_times(&self.x, &mut ax);
+            let mut violated = false;
+            for i in self.screenable() {
+                if !self.kept[i] && ax[i] - self.b[i] > SCREEN_TOL * (1.0 + self.b[i].abs()) {
+                    want[i] = true;
+                    violated = true;
+                }
+            }
+            self.ax = ax;
+            if !violated {
+                self.want = want;
+                return Ok(true);
+            }
         }
-        Ok(ok)
     }
 
     /// `Px + q + Aᵀz` at `x` with the last duals (the QP's stationarity residual), into `out`.
@@ -459,5 +602,70 @@ impl PostureQp {
         for (k, &(r, c)) in self.a_pattern.iter().enumerate() {
             out[r] += self.a_nz[k] * x[c];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A QP over a two-joint step with two clearance rows: `min ½|Δq|² − 3 Δq₀ + 10³ v`, with
+    /// `Δq₀ − v ≤ 1` and `Δq₁ − v ≤ 5` (`v ≥ 0`, the clearances' shared slack) and joint limits
+    /// `Δq ≤ 10`. The first row is far from the start (slack 1, left out at first) but the
+    /// unconstrained step (Δq₀ = 3) crosses it: the check must put it back, and the answer is
+    /// the whole QP's, Δq = (1, 0) with the row's multiplier 2.
+    fn qp(screen: bool) -> PostureQp {
+        let sizes = QpSizes {
+            n: 2,
+            a: 0,
+            m: 0,
+            c: 0,
+            k: 2,
+            e: 0,
+            z: 0,
+        };
+        let mut qp = PostureQp::new(sizes, QpPrecision::default(), &[]).unwrap();
+        qp.screen = screen;
+        let (r, c) = (qp.rows, qp.cols);
+        qp.clear();
+        qp.p_dq[0] = 1.0;
+        qp.p_dq[3] = 1.0;
+        qp.q[c.dq] = -3.0;
+        qp.q[c.v_cap] = 1e3;
+        qp.q[c.v_geo] = 1e3;
+        qp.set_a(r.nonneg, c.v_cap, -1.0);
+        qp.set_a(r.nonneg + 1, c.v_geo, -1.0);
+        for j in 0..2 {
+            qp.set_a(r.limit + j, c.dq + j, 1.0);
+            qp.b[r.limit + j] = 10.0;
+            qp.set_a(r.clearance + j, c.dq + j, 1.0);
+            qp.set_a(r.clearance + j, c.v_geo, -1.0);
+        }
+        qp.b[r.clearance] = 1.0;
+        qp.b[r.clearance + 1] = 5.0;
+        qp
+    }
+
+    #[test]
+    fn rows_left_out_are_put_back_when_the_step_crosses_them() {
+        let (mut whole, mut screened) = (qp(false), qp(true));
+        assert!(whole.solve().unwrap() && screened.solve().unwrap());
+        let c = whole.cols;
+        for x in [&whole.x, &screened.x] {
+            assert!(
+                (x[c.dq] - 1.0).abs() < 1e-6 && x[c.dq + 1].abs() < 1e-6,
+                "{x:?}"
+            );
+        }
+        let r = whole.rows.clearance;
+        for z in [&whole.z, &screened.z] {
+            assert!((z[r] - 2.0).abs() < 1e-6 && z[r + 1].abs() < 1e-6, "{z:?}");
+        }
+        // the screened QP left both clearance rows out, then solved again with the first back
+        assert_eq!((whole.solves, screened.solves), (1, 2));
+        assert!(screened.kept[r] && !screened.kept[r + 1]);
+        // the next QP keeps the row put back, and needs one solve
+        assert!(screened.solve().unwrap());
+        assert_eq!(screened.solves, 3);
     }
 }

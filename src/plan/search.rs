@@ -8,8 +8,9 @@
 //! iterations; the most promising ([`SearchSettings::finalists`]) are solved to convergence and
 //! the best feasible one is kept. The planner's cross-seeding pass searches from the other
 //! phases' postures instead ([`PhaseSolver::extra_seeds`]), all solved to convergence.
+//! The starts' local solves run in parallel (rayon), each a function of its start alone.
 //! Everything is deterministic: the same problem gives the same posture, whatever posture the
-//! search started from.
+//! search started from and whatever the number of threads.
 
 use super::ik::{IkSettings, solve_ik};
 use super::objective::{Discomfort, LoadCost, Shape};
@@ -81,6 +82,10 @@ pub struct PhaseSolver<'t> {
     pub stepping: Stepping,
     /// The held objects of the next solves' phases (set by the planner per group; `None`: none).
     pub held: Option<Workstation>,
+    /// Further buffers for the multi-start's solves on other threads (made as needed, kept).
+    spares: Vec<(PostureWork, SqpWork)>,
+    /// The settings `work` was made with (its QP's precision and row counts), for the spares.
+    built_with: SqpSettings,
 }
 
 /// A phase to solve: targets, hand forces, and how its cost is weighed.
@@ -151,7 +156,24 @@ impl<'t> PhaseSolver<'t> {
             pool: Vec::new(),
             stepping: Stepping::default(),
             held: None,
+            spares: Vec::new(),
+            built_with: settings,
         })
+    }
+
+    /// QP solves so far (on every thread's buffers).
+    pub fn qp_solves(&self) -> u64 {
+        self.work.qp.solves + self.spares.iter().map(|(_, w)| w.qp.solves).sum::<u64>()
+    }
+
+    /// Interior-point iterations of all QP solves so far (on every thread's buffers).
+    pub fn ipm_iterations(&self) -> u64 {
+        self.work.qp.ipm_iterations
+            + self
+                .spares
+                .iter()
+                .map(|(_, w)| w.qp.ipm_iterations)
+                .sum::<u64>()
     }
 
     /// Starting postures for a phase with these targets (before IK).
@@ -346,12 +368,12 @@ impl<'t> PhaseSolver<'t> {
             max_iterations: self.search.screen_iterations,
             ..full
         };
-        let mut screened: Vec<(f64, usize, Vec<f64>, SqpOutcome)> =
-            Vec::with_capacity(starts.len());
-        for (i, mut s) in starts.into_iter().enumerate() {
-            let out = self.run(spec, cost, &mut s, screen)?;
-            screened.push((rank(&out), i, s, out));
-        }
+        let mut screened: Vec<(f64, usize, Vec<f64>, SqpOutcome)> = self
+            .run_all(spec, cost, starts, screen)?
+            .into_iter()
+            .enumerate()
+            .map(|(i, (s, out))| (rank(&out), i, s, out))
+            .collect();
         let first_screen = screened[0].3.objective;
         screened.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let n_seeds = screened.len();
@@ -364,8 +386,13 @@ impl<'t> PhaseSolver<'t> {
         } else {
             self.search.finalists.max(1)
         };
-        for (_, i, mut s, _) in screened.into_iter().take(finalists) {
-            let out = self.run(spec, cost, &mut s, full)?;
+        let (order, finals): (Vec<usize>, Vec<Vec<f64>>) = screened
+            .into_iter()
+            .take(finalists)
+            .map(|(_, i, s, _)| (i, s))
+            .unzip();
+        let solved = self.run_all(spec, cost, finals, full)?;
+        for (i, (s, out)) in order.into_iter().zip(solved) {
             if i == 0 {
                 first_full = Some(out.objective);
             }
@@ -473,29 +500,126 @@ impl<'t> PhaseSolver<'t> {
         q: &mut [f64],
         settings: SqpSettings,
     ) -> Result<SqpOutcome, QpError> {
-        self.work.settings = settings;
+        let (fixed, pw, work, _) = self.parts();
+        fixed.run_in(pw, work, spec, cost, q, settings)
+    }
+
+    /// What the local solves read, and the buffers they write: the solver's own and the spares.
+    #[allow(clippy::type_complexity)]
+    fn parts(
+        &mut self,
+    ) -> (
+        Fixed<'_, 't>,
+        &mut PostureWork,
+        &mut SqpWork,
+        &mut Vec<(PostureWork, SqpWork)>,
+    ) {
+        (
+            Fixed {
+                task: self.task,
+                scene: &self.scene,
+                discomfort: &self.discomfort,
+                stepping: &self.stepping,
+                held: self.held.as_ref(),
+                settings: self.settings,
+                built_with: self.built_with,
+            },
+            &mut self.pw,
+            &mut self.work,
+            &mut self.spares,
+        )
+    }
+
+    /// Solves from each start, on as many threads as rayon gives; returns the postures and
+    /// outcomes in the starts' order. Each local solve is a function of its problem and start
+    /// alone (fresh curvature, penalties and QP solver: [`solve_phase`]), so the answer is the
+    /// serial one whatever the number of threads; `cost` is copied for each solve
+    /// ([`LoadCost::fork`]).
+    fn run_all(
+        &mut self,
+        spec: &PhaseSpec,
+        cost: &dyn LoadCost,
+        starts: Vec<Vec<f64>>,
+        settings: SqpSettings,
+    ) -> Result<Vec<(Vec<f64>, SqpOutcome)>, QpError> {
+        use rayon::prelude::*;
+        use std::sync::{Mutex, MutexGuard, PoisonError};
+        fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+            m.lock().unwrap_or_else(PoisonError::into_inner)
+        }
+        let (fixed, pw, work, spare) = self.parts();
+        // the solver's own buffers first, then the spares, then new ones
+        let own = Mutex::new(Some((pw, work)));
+        let spares = Mutex::new(std::mem::take(spare));
+        let results: Vec<Result<(Vec<f64>, SqpOutcome), QpError>> = starts
+            .into_par_iter()
+            .map(|mut q| {
+                let mut c = cost.fork();
+                let taken = lock(&own).take();
+                let r = if let Some((pw, work)) = taken {
+                    let r = fixed.run_in(pw, work, spec, &mut *c, &mut q, settings);
+                    *lock(&own) = Some((pw, work));
+                    r
+                } else {
+                    let popped = lock(&spares).pop();
+                    let (mut pw, mut work) = match popped {
+                        Some(b) => b,
+                        None => (
+                            PostureWork::new(fixed.task),
+                            SqpWork::new(fixed.task, fixed.scene, fixed.built_with)?,
+                        ),
+                    };
+                    let r = fixed.run_in(&mut pw, &mut work, spec, &mut *c, &mut q, settings);
+                    lock(&spares).push((pw, work));
+                    r
+                };
+                r.map(|out| (q, out))
+            })
+            .collect();
+        *spare = spares.into_inner().unwrap_or_else(PoisonError::into_inner);
+        results.into_iter().collect()
+    }
+}
+
+/// What every local solve of a phase solver reads and none changes.
+struct Fixed<'a, 't> {
+    task: &'t Task,
+    scene: &'a Scene,
+    discomfort: &'a Discomfort,
+    stepping: &'a Stepping,
+    held: Option<&'a Workstation>,
+    settings: SqpSettings,
+    /// The settings the solver's own buffers were made with (for new spares).
+    built_with: SqpSettings,
+}
+
+impl Fixed<'_, '_> {
+    /// One local solve in the given buffers.
+    fn run_in(
+        &self,
+        pw: &mut PostureWork,
+        work: &mut SqpWork,
+        spec: &PhaseSpec,
+        cost: &mut dyn LoadCost,
+        q: &mut [f64],
+        settings: SqpSettings,
+    ) -> Result<SqpOutcome, QpError> {
+        work.settings = settings;
         let mut prob = PhaseProblem {
             targets_m: spec.targets_m,
             hand_force_n: spec.hand_force_n,
             cost,
-            discomfort: &self.discomfort,
+            discomfort: self.discomfort,
             discomfort_weight: spec.discomfort_weight,
             shape: spec.shape,
             capacity: spec.capacity,
             gaze_m: spec.gaze_m,
-            stepping: &self.stepping,
+            stepping: self.stepping,
             zones: spec.zones,
-            held: self.held.as_ref(),
+            held: self.held,
         };
-        let r = solve_phase(
-            self.task,
-            &self.scene,
-            &mut self.pw,
-            &mut self.work,
-            &mut prob,
-            q,
-        );
-        self.work.settings = self.settings;
+        let r = solve_phase(self.task, self.scene, pw, work, &mut prob, q);
+        work.settings = self.settings;
         r
     }
 }

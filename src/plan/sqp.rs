@@ -967,6 +967,8 @@ pub fn solve_phase(
     }
     let mut out = SqpOutcome::default();
     work.mu_eq = s.mu_eq;
+    // a local solve is a function of its problem and start alone
+    work.qp.forget_solver();
     let mut m0 = merit(task, scene, pw, work, prob, q);
     start_curvature(task, scene, pw, work, prob, q);
     work.reset_once = false;
