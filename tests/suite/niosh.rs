@@ -744,7 +744,7 @@ cycles: 10
 #[test]
 fn task_longer_than_8_hours_has_no_weight_limit() {
     use posture_opt::assess::lifting::assess_lifts;
-    use posture_opt::plan::{PlanOptions, Task, plan_task_with};
+    use posture_opt::plan::{Task, plan_task_with};
 
     // 3000 cycles of 12 s: 10 h.
     let yaml = r#"name: ten hours of lifting
@@ -765,14 +765,7 @@ cycles: 3000
     std::fs::write(&path, yaml).unwrap();
     let task = Task::from_file(&path).unwrap();
     assert!((task.duration_s() - 36_000.0).abs() < 1e-6);
-    let plan = plan_task_with(
-        &task,
-        PlanOptions {
-            adapt: false,
-            ..PlanOptions::default()
-        },
-    )
-    .unwrap();
+    let plan = plan_task_with(&task, crate::common::held(true)).unwrap();
     let r = assess_lifts(&task, &plan).expect("the task declares a lift");
     assert!(
         matches!(r, Err(NioshError::DurationOutOfRange(_))),

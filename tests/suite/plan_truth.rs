@@ -3,6 +3,7 @@
 //! solver's precision, and monotone families (a heavier load can never be planned to tire less;
 //! a shelf moved in small steps does not flip the verdict). No total is copied from a run.
 
+use crate::common::held;
 use posture_opt::fatigue::{MaParams, MaState};
 use posture_opt::plan::qp::QpPrecision;
 use posture_opt::plan::search::SearchSettings;
@@ -22,14 +23,6 @@ fn one_phase(load_kg: f64, target: [f64; 3], hold_s: f64, rest_s: f64, cycles: u
         "name: hold\nworker: {{sex: female, stature_m: 1.62, mass_kg: 60.0}}\nworkstation:\n  obstacles:\n    - {{name: floor, plane: {{normal: [0, 0, 1]}}, position_m: [0, 0, 0]}}\nphases:\n  - {{name: hold, target_m: [{}, {}, {}], load_kg: {load_kg}, duration_s: {hold_s}}}\nrest_s: {rest_s}\ncycles: {cycles}\n",
         target[0], target[1], target[2]
     )
-}
-
-fn held(baselines: bool) -> PlanOptions {
-    PlanOptions {
-        adapt: false,
-        baselines,
-        ..PlanOptions::default()
-    }
 }
 
 /// Replays the plan's steps hold by hold (each step's posture loads, each half-joint's k and
@@ -480,10 +473,8 @@ fn a_heavier_load_is_never_planned_to_tire_less() {
         let plan = plan_task_with(
             &task,
             PlanOptions {
-                adapt: false,
                 fatigue_only: true,
-                baselines: false,
-                ..PlanOptions::default()
+                ..held(false)
             },
         )
         .unwrap();

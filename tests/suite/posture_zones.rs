@@ -288,10 +288,8 @@ fn shelf_plan(zones: bool) -> &'static (Task, Plan) {
         let p = plan_task_with(
             &t,
             PlanOptions {
-                adapt: false,
-                baselines: false,
                 zones,
-                ..PlanOptions::default()
+                ..crate::common::held(false)
             },
         )
         .unwrap();
@@ -379,11 +377,9 @@ fn a_fatigue_only_plan_keeps_the_zones() {
         plan_task_with(
             &t,
             PlanOptions {
-                adapt: false,
-                baselines: false,
                 fatigue_only: true,
                 zones,
-                ..PlanOptions::default()
+                ..crate::common::held(false)
             },
         )
         .unwrap()
@@ -441,11 +437,7 @@ fn a_fatigue_only_plan_keeps_the_zones() {
 #[test]
 fn what_would_change_it_moves_the_phase_forced_farthest_beyond_a_zone() {
     let t = task("overhead_drilling.yaml");
-    let opts = PlanOptions {
-        adapt: false,
-        baselines: false,
-        ..PlanOptions::default()
-    };
+    let opts = crate::common::held(false);
     let p = plan_task_with(&t, opts).unwrap();
     let excess = |i: usize| -> f64 {
         p.summary.phases[i]

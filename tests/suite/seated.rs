@@ -17,7 +17,7 @@
 use nalgebra::Vector3;
 use posture_opt::plan::posture::{PostureWork, Row};
 use posture_opt::plan::search::seated_start;
-use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
+use posture_opt::plan::{Plan, Task, plan_task_with};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
@@ -190,15 +190,7 @@ fn planned() -> &'static (Task, Plan) {
     P.get_or_init(|| {
         let text = seated_text().replace("cycles: 240", "cycles: 1");
         let t = task_of(&text).unwrap();
-        let p = plan_task_with(
-            &t,
-            PlanOptions {
-                adapt: false,
-                baselines: false,
-                ..PlanOptions::default()
-            },
-        )
-        .unwrap();
+        let p = plan_task_with(&t, crate::common::held(false)).unwrap();
         (t, p)
     })
 }

@@ -20,11 +20,7 @@ fn task(target: [f64; 3], load_kg: f64, hold_s: f64, rest_s: f64, cycles: u32) -
 }
 
 fn held() -> PlanOptions {
-    PlanOptions {
-        adapt: false,
-        baselines: false,
-        ..PlanOptions::default()
-    }
+    crate::common::held(false)
 }
 
 /// A 5 kg panel held overhead at 1.85 m, 0.35 m in front, 20 s of every 40 s, for 2 h.

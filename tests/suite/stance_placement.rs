@@ -50,10 +50,8 @@ fn plan(task: &Task) -> Plan {
     plan_task_with(
         task,
         PlanOptions {
-            adapt: false,
-            baselines: false,
             zones: false,
-            ..PlanOptions::default()
+            ..crate::common::held(false)
         },
     )
     .unwrap()
@@ -332,17 +330,7 @@ fn turning_the_feet_removes_the_twist_of_a_side_transfer() {
         twist_fixed > 20.0,
         "with the feet fixed the side transfer twists the trunk {twist_fixed:.1}°: the test needs a task that does"
     );
-    let zoned = |task: &Task| {
-        plan_task_with(
-            task,
-            PlanOptions {
-                adapt: false,
-                baselines: false,
-                ..PlanOptions::default()
-            },
-        )
-        .unwrap()
-    };
+    let zoned = |task: &Task| plan_task_with(task, crate::common::held(false)).unwrap();
     let fixed_plan = zoned(&fixed);
     let task = side_transfer(false);
     let plan = zoned(&task);
@@ -506,15 +494,7 @@ cycles: 10
 stance: {area_m: [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]}
 ";
     let t = Task::from_yaml_str(text, &root().join("tasks/pallet_lift.yaml")).unwrap();
-    let p = plan_task_with(
-        &t,
-        PlanOptions {
-            adapt: false,
-            baselines: false,
-            ..PlanOptions::default()
-        },
-    )
-    .unwrap();
+    let p = plan_task_with(&t, crate::common::held(false)).unwrap();
     assert!(p.problems().is_empty(), "{:?}", p.problems());
     let m = &t.model;
     let body = [

@@ -488,3 +488,12 @@ pub fn quick_task(name: &str, load_kg: f64, duration_s: f64, rest_s: f64, cycles
         "name: {name}\nworker: {{sex: male, stature_m: 1.755, mass_kg: 78.0}}\nphases:\n  - {{name: hold, target_m: [0.35, -0.2, 1.0], load_kg: {load_kg}, duration_s: {duration_s}}}\nrest_s: {rest_s}\ncycles: {cycles}\n"
     )
 }
+
+/// Plan options for a held plan (no re-planning), with or without the three baselines.
+pub fn held(baselines: bool) -> posture_opt::plan::PlanOptions {
+    posture_opt::plan::PlanOptions {
+        adapt: false,
+        baselines,
+        ..posture_opt::plan::PlanOptions::default()
+    }
+}
