@@ -3,10 +3,14 @@
 //! between that solve's SQP iterations (presolve off). It is built afresh for every local solve
 //! ([`PostureQp::forget_solver`]) because clarabel's data updates keep the equilibration of the
 //! QP the solver was built with: a reused solver made each solve depend on the solves before it
-//! (so on the order of the multi-start's seeds, and on which thread ran them). The clearance,
-//! balance and zone rows a short step cannot reach are left out of the solver's problem and the
-//! solution checked against them ([`PostureQp::solve`]); the solver is also rebuilt when a row
-//! is put back.
+//! (so on the order of the multi-start's seeds, and on which thread ran them).
+//!
+//! The solver is given the QP reduced to what can matter ([`PostureQp::solve`]): the torques
+//! that keep their sign substituted (the unknowns are then the posture and the few torques near
+//! zero), the equality rows hard while their multipliers stay below the slacks' penalty, and the
+//! capacity, clearance, balance and zone rows a short step cannot reach left out. The solution is
+//! checked against everything left out, and what it violates is put back and the QP solved
+//! again; the solver is also rebuilt when the reduction changes.
 //!
 //! Variables `x = [Δq (n), s⁺ (a), s⁻ (a), e⁺ (m), e⁻ (m), v_cap, v_geo, v_zone (z)]`: the posture step, the actuated
 //! joints' torques split by sign (`τ̄ + D Δq = s⁺ − s⁻`, so every half-joint's load `s±/MVC±` is
@@ -146,26 +150,46 @@ pub struct PostureQp {
     pub p_diag: Vec<f64>,
     /// The posture block of P, dense, row-major n × n (symmetric; its upper triangle is used).
     pub p_dq: Vec<f64>,
-    p_nz: Vec<f64>,
-    p_colptr: Vec<usize>,
-    p_rowval: Vec<usize>,
     pub q: Vec<f64>,
     solver: Option<DefaultSolver<f64>>,
     settings: DefaultSettings<f64>,
-    /// Rows given to the solver (the others are inactive rows left out: [`Self::solve`]), and
-    /// each row's index among them (`usize::MAX`: left out).
+    /// Each stored entry's index in `a_pattern` by column: column `c`'s entries are
+    /// `a_colptr[c]..a_colptr[c + 1]`.
+    a_colptr: Vec<usize>,
+    /// How each actuated joint's torque enters the solver's problem ([`Split`]).
+    split: Vec<Split>,
+    /// Whether the equality rows' slacks are variables of the solver's problem (else the rows
+    /// are hard and the slacks 0).
+    elastic: bool,
+    /// Rows given to the solver (the others are left out: [`Self::solve`]) and columns (the
+    /// others are 0 or functions of the posture step), and each one's index among them
+    /// (`usize::MAX`: left out).
     kept: Vec<bool>,
+    live: Vec<bool>,
     red_row: Vec<usize>,
-    /// The kept rows' entries of A (indices into `a_nz`, in column order) and their values, and
-    /// the kept rows' right-hand sides.
-    red_idx: Vec<usize>,
+    red_col: Vec<usize>,
+    /// The structure the solver was built for: kept rows, live columns, torque splits.
+    built_for: (Vec<bool>, Vec<bool>, Vec<Split>),
+    /// The solver's problem: its A's entries (full row and column, in its column order) and
+    /// values, its P's (upper triangle) and values, q and b.
+    red_pat: Vec<(usize, usize)>,
     red_nz: Vec<f64>,
+    red_p_pat: Vec<(usize, usize)>,
+    red_p_nz: Vec<f64>,
+    red_q: Vec<f64>,
     red_b: Vec<f64>,
-    /// Scratch: each row's norm over the posture columns, and `Ax`.
-    row_norm: Vec<f64>,
+    /// The problem with the torques of the one-signed joints substituted: each row's entries
+    /// on the posture columns (n_row × n, row-major), b, q and P's posture block.
+    sub_a_dq: Vec<f64>,
+    sub_b: Vec<f64>,
+    sub_q: Vec<f64>,
+    sub_p_dq: Vec<f64>,
+    /// Rows that touch a substituted torque (dense over the posture in the solver's problem).
+    densified: Vec<bool>,
+    /// Scratch: `Ax`, the rows wanted.
     ax: Vec<f64>,
     want: Vec<bool>,
-    /// Whether inactive rows are left out (on by default; off solves every QP whole).
+    /// Whether the solver's problem is reduced (on by default; off solves every QP whole).
     pub screen: bool,
     /// The last solution: primal x and dual z (clarabel's `Px + q + Aᵀz = 0`).
     pub x: Vec<f64>,
@@ -183,6 +207,22 @@ const SCREEN_REACH: f64 = 0.05;
 /// A row left out is violated at the reduced solution when `A_i x − b_i` exceeds this times
 /// `1 + |b_i|`.
 const SCREEN_TOL: f64 = 1e-9;
+
+/// A variable left at zero is set free when the bound `x ≥ 0` holding it needs a multiplier
+/// below `−SCREEN_DUAL_TOL (1 + |q_x|)` (`q_x` its linear cost): the objective would fall if it
+/// rose.
+const SCREEN_DUAL_TOL: f64 = 1e-9;
+
+/// How an actuated joint's torque `τ = τ̄ + D Δq` enters the solver's problem.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Split {
+    /// Both signs are variables: `s⁺ − s⁻ = τ`, `s± ≥ 0`.
+    Both,
+    /// The torque keeps its sign: `s⁺ = τ̄ + D Δq` is substituted and `s⁻ = 0` (or the
+    /// reverse). The sign bound is left out and checked after the solve.
+    Plus,
+    Minus,
+}
 
 /// Solver precision of the QP (clarabel's gap and feasibility tolerances).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -297,18 +337,28 @@ impl PostureQp {
             b: vec![0.0; rows.n_row],
             p_diag: vec![0.0; cols.n_var],
             p_dq: vec![0.0; sizes.n * sizes.n],
-            p_nz: Vec::new(),
-            p_colptr: Vec::new(),
-            p_rowval: Vec::new(),
             q: vec![0.0; cols.n_var],
             solver: None,
             settings,
+            a_colptr: Vec::new(),
+            split: vec![Split::Both; a],
+            elastic: true,
             kept: vec![true; rows.n_row],
+            live: vec![true; cols.n_var],
             red_row: (0..rows.n_row).collect(),
-            red_idx: Vec::new(),
+            red_col: (0..cols.n_var).collect(),
+            built_for: (Vec::new(), Vec::new(), Vec::new()),
+            red_pat: Vec::new(),
             red_nz: Vec::new(),
+            red_p_pat: Vec::new(),
+            red_p_nz: Vec::new(),
+            red_q: Vec::new(),
             red_b: Vec::new(),
-            row_norm: vec![0.0; rows.n_row],
+            sub_a_dq: vec![0.0; rows.n_row * n],
+            sub_b: vec![0.0; rows.n_row],
+            sub_q: vec![0.0; cols.n_var],
+            sub_p_dq: vec![0.0; n * n],
+            densified: vec![false; rows.n_row],
             ax: vec![0.0; rows.n_row],
             want: vec![true; rows.n_row],
             screen: true,
@@ -317,37 +367,16 @@ impl PostureQp {
             solves: 0,
             ipm_iterations: 0,
         };
-        // P's pattern: column j of the posture block holds rows 0..=j; other columns their diagonal.
-        let mut colptr = vec![0usize];
-        let mut rowval = Vec::new();
-        for j in 0..cols.n_var {
-            if j < sizes.n {
-                rowval.extend(0..=j);
-            } else {
-                rowval.push(j);
-            }
-            colptr.push(rowval.len());
+        let mut a_colptr = vec![0usize; cols.n_var + 1];
+        for &(_, c) in &qp.a_pattern {
+            a_colptr[c + 1] += 1;
         }
-        qp.p_nz = vec![0.0; rowval.len()];
-        qp.p_colptr = colptr;
-        qp.p_rowval = rowval;
+        for c in 0..cols.n_var {
+            a_colptr[c + 1] += a_colptr[c];
+        }
+        qp.a_colptr = a_colptr;
         qp.forget_solver();
         Ok(qp)
-    }
-
-    /// Gathers P's stored values from `p_dq` and `p_diag`.
-    fn gather_p(&mut self) {
-        let n = self.sizes.n;
-        for j in 0..self.cols.n_var {
-            for k in self.p_colptr[j]..self.p_colptr[j + 1] {
-                let i = self.p_rowval[k];
-                self.p_nz[k] = if j < n {
-                    self.p_dq[i * n + j]
-                } else {
-                    self.p_diag[j]
-                };
-            }
-        }
     }
 
     /// `x_iᵀ (P x)_i` helper: `(P x)_i` for the posture block and the diagonal.
@@ -396,140 +425,407 @@ impl PostureQp {
         }
     }
 
-    fn csc_p(&self) -> CscMatrix<f64> {
-        let n = self.cols.n_var;
-        CscMatrix::new(
-            n,
-            n,
-            self.p_colptr.clone(),
-            self.p_rowval.clone(),
-            self.p_nz.clone(),
-        )
+    /// The column an actuated joint's substituted torque lives in, and the one left at zero.
+    fn split_cols(&self, joint: usize) -> Option<(usize, usize)> {
+        let (p, m) = (self.cols.s_plus + joint, self.cols.s_minus + joint);
+        match self.split[joint] {
+            Split::Both => None,
+            Split::Plus => Some((p, m)),
+            Split::Minus => Some((m, p)),
+        }
     }
 
-    /// A restricted to the kept rows (values from `red_nz`).
-    fn csc_a_kept(&self) -> CscMatrix<f64> {
-        let n_kept = self.red_b.len();
-        let mut colptr = vec![0usize; self.cols.n_var + 1];
-        let mut rowval = Vec::with_capacity(self.red_idx.len());
-        for &k in &self.red_idx {
-            let (row, col) = self.a_pattern[k];
-            colptr[col + 1] += 1;
-            rowval.push(self.red_row[row]);
+    /// The bound row `−x ≤ 0` of a slack or torque column (`None`: the posture).
+    fn bound_row(&self, col: usize) -> Option<usize> {
+        let (c, r, sz) = (self.cols, self.rows, self.sizes);
+        let nn = r.nonneg;
+        if col < c.s_plus {
+            None
+        } else if col < c.e {
+            Some(nn + (col - c.s_plus))
+        } else if col < c.v_cap {
+            Some(nn + 2 * sz.a + 2 + sz.z + (col - c.e))
+        } else if col == c.v_cap {
+            Some(nn + 2 * sz.a)
+        } else if col == c.v_geo {
+            Some(nn + 2 * sz.a + 1)
+        } else {
+            Some(nn + 2 * sz.a + 2 + (col - c.v_zone))
         }
-        for c in 0..self.cols.n_var {
-            colptr[c + 1] += colptr[c];
-        }
-        CscMatrix::new(n_kept, self.cols.n_var, colptr, rowval, self.red_nz.clone())
     }
 
-    /// Drops the solver and the rows kept so far: the next [`Self::solve`] builds it from its
-    /// own data, so that its scaling and rows (and so its answer) do not depend on earlier QPs.
+    /// `Σ_r A[r, col] z_r` over the rows but `skip`.
+    fn col_dot(&self, col: usize, z: &[f64], skip: usize) -> f64 {
+        (self.a_colptr[col]..self.a_colptr[col + 1])
+            .filter(|&k| self.a_pattern[k].0 != skip)
+            .map(|k| self.a_nz[k] * z[self.a_pattern[k].0])
+            .sum()
+    }
+
+    /// Drops the solver and the reductions chosen so far: the next [`Self::solve`] builds it
+    /// from its own data, so that its scaling and rows (and so its answer) do not depend on
+    /// earlier QPs.
     pub fn forget_solver(&mut self) {
         self.solver = None;
         let r = self.screenable();
         self.kept[r].iter_mut().for_each(|k| *k = false);
+        self.split.iter_mut().for_each(|s| *s = Split::Plus);
+        self.elastic = !self.screen;
     }
 
-    /// The rows that may be left out: clearances, balance and posture zones (the dense rows
-    /// over the posture; the equalities, bounds, joint limits and capacity rows always stay).
+    /// The rows that may be left out: the capacity rows, clearances, balance and posture zones
+    /// (the equalities, bounds and joint limits always stay).
     fn screenable(&self) -> std::ops::Range<usize> {
-        self.rows.clearance..self.rows.n_row
+        self.rows.cap..self.rows.n_row
     }
 
-    /// Chooses the rows to give the solver: every row but the screenable ones that a short step
-    /// cannot reach — a row `A_i x ≤ b_i` whose slack at `x = 0` exceeds [`SCREEN_REACH`] times
-    /// its norm over the posture columns — and that no earlier QP of this local solve needed
-    /// (a row once given stays until [`Self::forget_solver`]: fewer re-solves and rebuilds).
-    fn choose_rows(&mut self, want: &mut [bool]) {
-        want.iter_mut().for_each(|w| *w = true);
-        if !self.screen {
-            return;
-        }
+    /// Chooses each joint's torque split: a joint whose torque no short step can turn round
+    /// ([`SCREEN_REACH`] times the norm of its posture gradient) keeps its sign and its torque
+    /// is substituted; the others (and any once found to turn round in this local solve: they
+    /// stay) keep both signs as variables.
+    fn choose_splits(&mut self) {
         let n = self.sizes.n;
-        self.row_norm.iter_mut().for_each(|x| *x = 0.0);
+        for i in 0..self.sizes.a {
+            if !self.screen {
+                self.split[i] = Split::Both;
+                continue;
+            }
+            if self.split[i] == Split::Both {
+                continue;
+            }
+            let t = self.rows.torque + i;
+            let tau = -self.b[t];
+            let norm = (0..n)
+                .map(|k| self.a(t, self.cols.dq + k).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            self.split[i] = if tau > SCREEN_REACH * norm {
+                Split::Plus
+            } else if -tau > SCREEN_REACH * norm {
+                Split::Minus
+            } else {
+                Split::Both
+            };
+        }
+    }
+
+    /// The problem with the one-signed torques substituted (`sub_*`): a torque column `x_c`
+    /// defined by its split row `A_t,dq Δq + A_t,c x_c = b_t` is `α + wᵀΔq`, `α = b_t / A_t,c`,
+    /// `w = −A_t,dq / A_t,c`; every other row on it gains `A_r,c w` on the posture and loses
+    /// `A_r,c α` from b, P's posture block gains `P_cc w wᵀ` and q `(P_cc α + q_c) w`.
+    fn substitute(&mut self) {
+        let n = self.sizes.n;
+        self.sub_a_dq.iter_mut().for_each(|v| *v = 0.0);
         for (k, &(r, c)) in self.a_pattern.iter().enumerate() {
             if c < n {
-                self.row_norm[r] += self.a_nz[k] * self.a_nz[k];
+                self.sub_a_dq[r * n + c] = self.a_nz[k];
             }
         }
-        for i in self.screenable() {
-            let reach = SCREEN_REACH * self.row_norm[i].sqrt();
-            want[i] = self.kept[i] || self.b[i] <= reach;
+        self.sub_b.copy_from_slice(&self.b);
+        self.sub_q.copy_from_slice(&self.q);
+        self.sub_p_dq.copy_from_slice(&self.p_dq);
+        self.densified.iter_mut().for_each(|d| *d = false);
+        for i in 0..self.sizes.a {
+            let Some((c, _)) = self.split_cols(i) else {
+                continue;
+            };
+            let t = self.rows.torque + i;
+            let at = self.a(t, c);
+            let alpha = self.b[t] / at;
+            for k in self.a_colptr[c]..self.a_colptr[c + 1] {
+                let r = self.a_pattern[k].0;
+                if r == t {
+                    continue;
+                }
+                let coef = self.a_nz[k];
+                for j in 0..n {
+                    self.sub_a_dq[r * n + j] -= coef * self.sub_a_dq[t * n + j] / at;
+                }
+                self.sub_b[r] -= coef * alpha;
+                self.densified[r] = true;
+            }
+            let h = self.p_diag[c];
+            let lin = h * alpha + self.q[c];
+            for j in 0..n {
+                let wj = -self.sub_a_dq[t * n + j] / at;
+                self.sub_q[self.cols.dq + j] += lin * wj;
+                if h != 0.0 {
+                    for l in 0..n {
+                        let wl = -self.sub_a_dq[t * n + l] / at;
+                        self.sub_p_dq[j * n + l] += h * wj * wl;
+                    }
+                }
+            }
         }
     }
 
-    /// Sets the kept rows and their maps; returns whether they changed.
-    fn keep_rows(&mut self, want: &[bool]) -> bool {
-        let changed = want != self.kept.as_slice();
-        if changed || self.red_b.len() != self.kept.iter().filter(|&&k| k).count() {
-            self.kept.copy_from_slice(want);
-            let mut next = 0;
-            for (i, &k) in self.kept.iter().enumerate() {
-                self.red_row[i] = if k {
-                    next += 1;
-                    next - 1
-                } else {
-                    usize::MAX
-                };
+    /// Which rows and columns the solver's problem has: every row and column but the bound
+    /// rows and columns of the substituted or zeroed torques, the split rows of substituted
+    /// torques, the equality slacks unless [`Self::elastic`], and the screenable rows that a
+    /// short step cannot reach — a row `A_i x ≤ b_i` whose slack at `x = 0` exceeds
+    /// [`SCREEN_REACH`] times its norm over the posture columns — and that no earlier QP of
+    /// this local solve needed (a row once given stays until [`Self::forget_solver`]: fewer
+    /// re-solves and rebuilds). A capacity row of a joint with both signs stays.
+    fn choose_rows(&mut self, want: &mut [bool]) {
+        let (n, a, r) = (self.sizes.n, self.sizes.a, self.rows);
+        want.iter_mut().for_each(|w| *w = true);
+        if !self.screen {
+            self.elastic = true;
+            self.live.iter_mut().for_each(|l| *l = true);
+            return;
+        }
+        for i in self.screenable() {
+            let norm = self.sub_a_dq[i * n..(i + 1) * n]
+                .iter()
+                .map(|v| v * v)
+                .sum::<f64>()
+                .sqrt();
+            want[i] = self.kept[i] || self.sub_b[i] <= SCREEN_REACH * norm;
+        }
+        for i in 0..a {
+            let both = self.split[i] == Split::Both;
+            want[r.torque + i] = both;
+            if both {
+                want[r.cap + i] = true;
+                want[r.cap + a + i] = true;
             }
-            self.red_idx.clear();
-            for (k, &(r, _)) in self.a_pattern.iter().enumerate() {
-                if self.kept[r] {
-                    self.red_idx.push(k);
+        }
+        self.set_live(want);
+    }
+
+    /// The live columns for the rows `want`, and the bound rows of the others left out.
+    fn set_live(&mut self, want: &mut [bool]) {
+        let (c, r, sz) = (self.cols, self.rows, self.sizes);
+        for col in 0..c.n_var {
+            let live = if col < c.s_plus {
+                true
+            } else if col < c.e {
+                self.split[(col - c.s_plus) % sz.a] == Split::Both
+            } else if col < c.v_cap {
+                self.elastic
+            } else if col >= c.v_zone {
+                want[r.zone + col - c.v_zone]
+            } else {
+                true
+            };
+            self.live[col] = live;
+            if let Some(b) = self.bound_row(col) {
+                want[b] = live;
+            }
+        }
+    }
+
+    /// Sets the kept rows and their maps, and the solver problem's pattern when they changed;
+    /// returns whether the structure changed (the solver must be built again).
+    fn keep_rows(&mut self, want: &[bool]) -> bool {
+        let changed = want != self.kept.as_slice()
+            || self.live != self.built_for.1
+            || self.split != self.built_for.2
+            || self.built_for.0.is_empty();
+        if !changed {
+            return false;
+        }
+        self.kept.copy_from_slice(want);
+        let n = self.sizes.n;
+        let mut next = 0;
+        for (i, &k) in self.kept.iter().enumerate() {
+            self.red_row[i] = if k {
+                next += 1;
+                next - 1
+            } else {
+                usize::MAX
+            };
+        }
+        self.red_b.resize(next, 0.0);
+        let mut next = 0;
+        for (j, &l) in self.live.iter().enumerate() {
+            self.red_col[j] = if l {
+                next += 1;
+                next - 1
+            } else {
+                usize::MAX
+            };
+        }
+        self.red_q.resize(next, 0.0);
+        self.red_pat.clear();
+        for col in (0..self.cols.n_var).filter(|&j| self.live[j]) {
+            for row in (0..self.rows.n_row).filter(|&i| self.kept[i]) {
+                let stored = self.slot[row * self.cols.n_var + col] != u32::MAX;
+                if stored || (col < n && self.densified[row]) {
+                    self.red_pat.push((row, col));
                 }
             }
-            self.red_nz.resize(self.red_idx.len(), 0.0);
-            self.red_b.resize(next, 0.0);
         }
-        changed
+        self.red_nz.resize(self.red_pat.len(), 0.0);
+        self.red_p_pat.clear();
+        for col in (0..self.cols.n_var).filter(|&j| self.live[j]) {
+            if col < n {
+                self.red_p_pat.extend((0..=col).map(|i| (i, col)));
+            } else {
+                self.red_p_pat.push((col, col));
+            }
+        }
+        self.red_p_nz.resize(self.red_p_pat.len(), 0.0);
+        self.built_for = (self.kept.clone(), self.live.clone(), self.split.clone());
+        true
+    }
+
+    /// The solver problem's values from the substituted problem.
+    fn gather(&mut self) {
+        let n = self.sizes.n;
+        for (v, &(r, c)) in self.red_nz.iter_mut().zip(&self.red_pat) {
+            *v = if c < n {
+                self.sub_a_dq[r * n + c]
+            } else {
+                self.a_nz[self.slot[r * self.cols.n_var + c] as usize]
+            };
+        }
+        for (v, &(i, j)) in self.red_p_nz.iter_mut().zip(&self.red_p_pat) {
+            *v = if j < n {
+                self.sub_p_dq[i * n + j]
+            } else {
+                self.p_diag[j]
+            };
+        }
+        for (i, &k) in self.kept.iter().enumerate() {
+            if k {
+                self.red_b[self.red_row[i]] = self.sub_b[i];
+            }
+        }
+        for (j, &l) in self.live.iter().enumerate() {
+            if l {
+                self.red_q[self.red_col[j]] = self.sub_q[j];
+            }
+        }
+    }
+
+    fn csc(
+        &self,
+        pat: &[(usize, usize)],
+        nz: &[f64],
+        n_row: usize,
+        rows: &[usize],
+    ) -> CscMatrix<f64> {
+        let n_col = self.red_q.len();
+        let mut colptr = vec![0usize; n_col + 1];
+        let mut rowval = Vec::with_capacity(pat.len());
+        for &(r, c) in pat {
+            colptr[self.red_col[c] + 1] += 1;
+            rowval.push(rows[r]);
+        }
+        for c in 0..n_col {
+            colptr[c + 1] += colptr[c];
+        }
+        CscMatrix::new(n_row, n_col, colptr, rowval, nz.to_vec())
+    }
+
+    /// The whole QP's x and z from the solver's solution: substituted torques `α + wᵀΔq`, zeroed
+    /// columns 0; left-out rows' multipliers 0, but a substituted torque's split row's and a
+    /// zeroed column's bound row's, which follow from the stationarity of that column.
+    fn expand(&mut self, x: &[f64], z: &[f64]) {
+        let n = self.sizes.n;
+        for (j, xj) in self.x.iter_mut().enumerate() {
+            *xj = match self.red_col[j] {
+                usize::MAX => 0.0,
+                c => x[c],
+            };
+        }
+        for (i, zi) in self.z.iter_mut().enumerate() {
+            *zi = match self.red_row[i] {
+                usize::MAX => 0.0,
+                r => z[r],
+            };
+        }
+        for i in 0..self.sizes.a {
+            let Some((c, _)) = self.split_cols(i) else {
+                continue;
+            };
+            let t = self.rows.torque + i;
+            let at = self.a(t, c);
+            let dot: f64 = (0..n).map(|k| self.a(t, k) * self.x[k]).sum();
+            self.x[c] = (self.b[t] - dot) / at;
+        }
+        for i in 0..self.sizes.a {
+            let Some((c, _)) = self.split_cols(i) else {
+                continue;
+            };
+            let t = self.rows.torque + i;
+            let at = self.a(t, c);
+            let rest = self.p_diag[c] * self.x[c] + self.q[c] + self.col_dot(c, &self.z, t);
+            self.z[t] = -rest / at;
+        }
+        for col in self.cols.s_plus..self.cols.n_var {
+            if !self.live[col] && !self.is_substituted(col) {
+                let b = self.bound_row(col).expect("a slack or torque column");
+                // −x ≤ 0: q_c + Σ_{r ≠ b} A_rc z_r − z_b = 0 at x = 0
+                self.z[b] = self.q[col] + self.col_dot(col, &self.z, b);
+            }
+        }
+    }
+
+    fn is_substituted(&self, col: usize) -> bool {
+        let c = self.cols;
+        if !(c.s_plus..c.e).contains(&col) {
+            return false;
+        }
+        let i = (col - c.s_plus) % self.sizes.a;
+        self.split_cols(i).is_some_and(|(s, _)| s == col)
     }
 
     /// Solves with the staged data; returns whether clarabel reports a (nearly) solved problem.
     ///
-    /// Rows that cannot be active are left out of the solver's problem (the clearance, balance
-    /// and zone rows are dense over the posture, and each one kept grows the factorisation of
-    /// every interior-point iteration); the solution is then checked against every row left out,
-    /// and any it violates is put back and the QP solved again. The reduced QP is a relaxation
-    /// of the whole one, so a solution of it that meets every row is the whole QP's solution.
+    /// The solver's problem is the whole QP reduced to what can matter, and its solution is
+    /// checked against what was left out:
+    /// * a joint whose torque keeps its sign has its torque substituted (`s⁺ = τ̄ + D Δq`,
+    ///   `s⁻ = 0`, or the reverse), so that the problem's unknowns are the posture and the few
+    ///   torques near zero; if the solution turns a substituted torque round, or the bound
+    ///   holding its zeroed sign needs a negative multiplier, the joint gets both signs back;
+    /// * the equality rows are hard until a solution's multiplier exceeds the slacks' ℓ1
+    ///   penalty (or the hard rows cannot be met): then the slacks are set free;
+    /// * the capacity, clearance, balance and zone rows a short step cannot reach are left out
+    ///   (they are dense over the posture, and each one kept grows the factorisation of every
+    ///   interior-point iteration); a row the solution violates is put back.
+    ///
+    /// Then the problem is solved again. A reduced solution that passes every check meets the
+    /// whole QP's optimality conditions, with the multipliers recovered in [`Self::expand`].
     pub fn solve(&mut self) -> Result<bool, QpError> {
-        self.gather_p();
         let mut want = std::mem::take(&mut self.want);
+        self.choose_splits();
+        self.substitute();
         self.choose_rows(&mut want);
+        let (mut xs, mut zs) = (Vec::new(), Vec::new());
         loop {
-            let changed = self.keep_rows(&want);
-            for (j, &k) in self.red_idx.iter().enumerate() {
-                self.red_nz[j] = self.a_nz[k];
-            }
-            for (i, &k) in self.kept.iter().enumerate() {
-                if k {
-                    self.red_b[self.red_row[i]] = self.b[i];
-                }
-            }
-            if changed {
+            if self.keep_rows(&want) {
                 self.solver = None;
             }
+            self.gather();
             match &mut self.solver {
                 Some(s) => {
-                    s.update_P(&self.p_nz)
+                    s.update_P(&self.red_p_nz)
                         .map_err(|e| QpError::Update(e.to_string()))?;
                     s.update_A(&self.red_nz)
                         .map_err(|e| QpError::Update(e.to_string()))?;
-                    s.update_q(&self.q)
+                    s.update_q(&self.red_q)
                         .map_err(|e| QpError::Update(e.to_string()))?;
                     s.update_b(&self.red_b)
                         .map_err(|e| QpError::Update(e.to_string()))?;
                 }
                 None => {
                     let n_kept = self.red_b.len();
-                    let cones: [SupportedConeT<f64>; 2] = [
-                        ZeroConeT(self.rows.n_zero),
-                        NonnegativeConeT(n_kept - self.rows.n_zero),
-                    ];
+                    let n_zero = (0..self.rows.n_zero).filter(|&i| self.kept[i]).count();
+                    let cones: [SupportedConeT<f64>; 2] =
+                        [ZeroConeT(n_zero), NonnegativeConeT(n_kept - n_zero)];
+                    let p = self.csc(
+                        &self.red_p_pat,
+                        &self.red_p_nz,
+                        self.red_q.len(),
+                        &self.red_col,
+                    );
+                    let a = self.csc(&self.red_pat, &self.red_nz, n_kept, &self.red_row);
                     let s = DefaultSolver::new(
-                        &self.csc_p(),
-                        &self.q,
-                        &self.csc_a_kept(),
+                        &p,
+                        &self.red_q,
+                        &a,
                         &self.red_b,
                         &cones,
                         self.settings.clone(),
@@ -547,32 +843,71 @@ impl PostureQp {
                 SolverStatus::Solved | SolverStatus::AlmostSolved
             );
             if !ok {
+                if !self.elastic {
+                    // the hard equality rows may be what cannot be met
+                    self.elastic = true;
+                    self.set_live(&mut want);
+                    continue;
+                }
                 self.want = want;
                 return Ok(false);
             }
-            self.x.copy_from_slice(&s.solution.x);
-            for (i, zi) in self.z.iter_mut().enumerate() {
-                *zi = match self.red_row[i] {
-                    usize::MAX => 0.0,
-                    r => s.solution.z[r],
-                };
-            }
-            // every row left out must hold at the solution
-            let mut ax = std::mem::take(&mut self.ax);
-            self.a_times(&self.x, &mut ax);
-            let mut violated = false;
-            for i in self.screenable() {
-                if !self.kept[i] && ax[i] - self.b[i] > SCREEN_TOL * (1.0 + self.b[i].abs()) {
-                    want[i] = true;
-                    violated = true;
-                }
-            }
-            self.ax = ax;
-            if !violated {
+            xs.clear();
+            xs.extend_from_slice(&s.solution.x);
+            zs.clear();
+            zs.extend_from_slice(&s.solution.z);
+            self.expand(&xs, &zs);
+            if !self.screen || !self.recheck(&mut want) {
                 self.want = want;
                 return Ok(true);
             }
         }
+    }
+
+    /// Checks the expanded solution against what the solver's problem left out; marks what
+    /// must go back in (rows in `want`, joints' both signs, the equality slacks) and returns
+    /// whether anything must.
+    fn recheck(&mut self, want: &mut [bool]) -> bool {
+        let mut again = false;
+        let mut ax = std::mem::take(&mut self.ax);
+        self.a_times(&self.x, &mut ax);
+        for i in self.screenable() {
+            if !self.kept[i] && ax[i] - self.b[i] > SCREEN_TOL * (1.0 + self.b[i].abs()) {
+                want[i] = true;
+                again = true;
+            }
+        }
+        self.ax = ax;
+        for i in 0..self.sizes.a {
+            let Some((c, d)) = self.split_cols(i) else {
+                continue;
+            };
+            let t = self.rows.torque + i;
+            let turned = self.x[c] < -SCREEN_TOL * (1.0 + self.b[t].abs());
+            let zd = self.z[self.bound_row(d).expect("a torque column")];
+            if turned || zd < -SCREEN_DUAL_TOL * (1.0 + self.q[d].abs()) {
+                self.split[i] = Split::Both;
+                want[self.rows.torque + i] = true;
+                want[self.rows.cap + i] = true;
+                want[self.rows.cap + self.sizes.a + i] = true;
+                again = true;
+            }
+        }
+        if !self.elastic {
+            let c = self.cols;
+            for col in c.e..c.v_cap {
+                let zb = self.z[self.bound_row(col).expect("a slack column")];
+                if zb < -SCREEN_DUAL_TOL * (1.0 + self.q[col].abs()) {
+                    self.elastic = true;
+                    again = true;
+                }
+            }
+        }
+        if again {
+            self.substitute();
+            self.set_live(want);
+        }
+        again
     }
 
     /// `Px + q + Aᵀz` at `x` with the last duals (the QP's stationarity residual), into `out`.
@@ -667,5 +1002,103 @@ mod tests {
         // the next QP keeps the row put back, and needs one solve
         assert!(screened.solve().unwrap());
         assert_eq!(screened.solves, 3);
+    }
+
+    /// A QP with one joint whose torque is `τ = 1 + Δq₀` and one target row `Δq₁ = ½`:
+    /// `min ½|Δq|² + g (s⁺ + s⁻) + μ (e⁺ + e⁻)` (the slacks' quadratic penalty negligible).
+    /// Closed forms: for `g < 1` the torque keeps its sign, `Δq₀ = −g`; for `g ≥ 1` it ends
+    /// at zero, `Δq₀ = −1`; for `μ ≥ ½` the target is met, `Δq₁ = ½`; below, `Δq₁ = μ`.
+    fn split_qp(screen: bool, g: f64, mu: f64) -> PostureQp {
+        let sizes = QpSizes {
+            n: 2,
+            a: 1,
+            m: 1,
+            c: 2,
+            k: 0,
+            e: 0,
+            z: 0,
+        };
+        let mut qp = PostureQp::new(sizes, QpPrecision::default(), &[]).unwrap();
+        qp.screen = screen;
+        qp.forget_solver();
+        let (r, c) = (qp.rows, qp.cols);
+        qp.clear();
+        qp.p_dq[0] = 1.0;
+        qp.p_dq[3] = 1.0;
+        qp.set_a(r.torque, c.dq, 1.0);
+        qp.set_a(r.torque, c.s_plus, -1.0);
+        qp.set_a(r.torque, c.s_minus, 1.0);
+        qp.b[r.torque] = -1.0;
+        qp.set_a(r.eq, c.dq + 1, 1.0);
+        qp.set_a(r.eq, c.e, 1.0);
+        qp.set_a(r.eq, c.e + 1, -1.0);
+        qp.b[r.eq] = 0.5;
+        for (i, col) in [c.s_plus, c.s_minus, c.v_cap, c.v_geo, c.e, c.e + 1]
+            .into_iter()
+            .enumerate()
+        {
+            let row = [r.nonneg, r.nonneg + 1, r.nonneg + 2, r.nonneg + 3][..]
+                .get(i)
+                .copied()
+                .unwrap_or(r.nonneg + 4 + (i - 4));
+            qp.set_a(row, col, -1.0);
+        }
+        qp.q[c.s_plus] = g;
+        qp.q[c.s_minus] = g;
+        qp.q[c.e] = mu;
+        qp.q[c.e + 1] = mu;
+        qp.p_diag[c.e] = 1e-9;
+        qp.p_diag[c.e + 1] = 1e-9;
+        qp.q[c.v_cap] = 1e3;
+        qp.q[c.v_geo] = 1e3;
+        qp.p_diag[c.v_cap] = 1e-6;
+        qp.p_diag[c.v_geo] = 1e-6;
+        for j in 0..2 {
+            qp.set_a(r.limit + j, c.dq + j, 1.0);
+            qp.b[r.limit + j] = 10.0;
+            qp.set_a(r.cap + j, [c.s_plus, c.s_minus][j], 1.0);
+            qp.set_a(r.cap + j, c.v_cap, -1.0);
+            qp.b[r.cap + j] = 1e3;
+        }
+        qp
+    }
+
+    #[test]
+    fn the_reduced_qp_has_the_whole_qps_solution_and_multipliers() {
+        // (g, μ, Δq₀, Δq₁, solves of the reduced QP)
+        for (g, mu, dq0, dq1, solves) in [
+            (0.3, 1.0, -0.3, 0.5, 1), // sign kept, target met: one solve
+            (2.0, 1.0, -1.0, 0.5, 2), // the substituted torque turns round: both signs back
+            (0.3, 0.1, -0.3, 0.1, 2), // the target's multiplier exceeds μ: slacks set free
+        ] {
+            let (mut whole, mut reduced) = (split_qp(false, g, mu), split_qp(true, g, mu));
+            assert!(whole.solve().unwrap() && reduced.solve().unwrap());
+            let c = whole.cols;
+            for x in [&whole.x, &reduced.x] {
+                assert!(
+                    (x[c.dq] - dq0).abs() < 1e-6 && (x[c.dq + 1] - dq1).abs() < 1e-6,
+                    "g {g}, μ {mu}: {x:?}"
+                );
+            }
+            for (a, b) in whole.x.iter().zip(&reduced.x) {
+                assert!(
+                    (a - b).abs() < 1e-6,
+                    "g {g}, μ {mu}: x {:?} {:?}",
+                    whole.x,
+                    reduced.x
+                );
+            }
+            // every multiplier the SQP reads (all but the slacks' own bounds, which the whole
+            // QP leaves free where a slack is 0 and its cost is a kink)
+            for i in 0..whole.rows.n_row {
+                assert!(
+                    (whole.z[i] - reduced.z[i]).abs() < 1e-5,
+                    "g {g}, μ {mu}: z[{i}] {} {}",
+                    whole.z[i],
+                    reduced.z[i]
+                );
+            }
+            assert_eq!((whole.solves, reduced.solves), (1, solves), "g {g}, μ {mu}");
+        }
     }
 }
