@@ -7,8 +7,10 @@
 //!
 //! The solver is given the QP reduced to what can matter ([`PostureQp::solve`]): the torques
 //! that keep their sign substituted (the unknowns are then the posture and the few torques near
-//! zero), the equality rows hard while their multipliers stay below the slacks' penalty, and the
-//! capacity, clearance, balance and zone rows a short step cannot reach left out. The solution is
+//! zero), the equality rows hard while their multipliers stay below the slacks' penalty and then
+//! eliminated (the posture step written on their null space, so that the solver's dense block is
+//! the posture's free directions alone), and the joint-limit, capacity, clearance, balance and
+//! zone rows a short step cannot reach left out. The solution is
 //! checked against everything left out, and what it violates is put back and the QP solved
 //! again; the solver is also rebuilt when the reduction changes.
 //!
@@ -168,8 +170,13 @@ pub struct PostureQp {
     live: Vec<bool>,
     red_row: Vec<usize>,
     red_col: Vec<usize>,
-    /// The structure the solver was built for: kept rows, live columns, torque splits.
-    built_for: (Vec<bool>, Vec<bool>, Vec<Split>),
+    /// The structure the solver was built for: kept rows, live columns, torque splits, and
+    /// whether the posture was projected on the equality rows' null space.
+    built_for: (Vec<bool>, Vec<bool>, Vec<Split>, bool),
+    /// The hard equality rows eliminated ([`Self::project`]): `Δq = Δq_p + Z y`, `y` the
+    /// solver's first `n_y` columns. Kept for the expansion: the rows used, the particular
+    /// step, Z (n × n_y, column-major) and the thin factors `Jᵀ = Q₁ R` of the rows used.
+    projected: Option<Projection>,
     /// The solver's problem: its A's entries (full row and column, in its column order) and
     /// values, its P's (upper triangle) and values, q and b.
     red_pat: Vec<(usize, usize)>,
@@ -186,6 +193,10 @@ pub struct PostureQp {
     sub_p_dq: Vec<f64>,
     /// Rows that touch a substituted torque (dense over the posture in the solver's problem).
     densified: Vec<bool>,
+    /// Rows with posture entries in the pattern.
+    has_dq: Vec<bool>,
+    /// Screenable rows given to the solver at some QP of this local solve (they stay).
+    sticky: Vec<bool>,
     /// Scratch: `Ax`, the rows wanted.
     ax: Vec<f64>,
     want: Vec<bool>,
@@ -212,6 +223,18 @@ const SCREEN_TOL: f64 = 1e-9;
 /// below `−SCREEN_DUAL_TOL (1 + |q_x|)` (`q_x` its linear cost): the objective would fall if it
 /// rose.
 const SCREEN_DUAL_TOL: f64 = 1e-9;
+
+/// The posture step written on the null space of the hard equality rows.
+#[derive(Debug, Clone)]
+struct Projection {
+    /// The equality rows with a nonzero posture part (the others read `0 = 0`).
+    rows: Vec<usize>,
+    dq_p: Vec<f64>,
+    n_y: usize,
+    z: nalgebra::DMatrix<f64>,
+    q1: nalgebra::DMatrix<f64>,
+    r: nalgebra::DMatrix<f64>,
+}
 
 /// How an actuated joint's torque `τ = τ̄ + D Δq` enters the solver's problem.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -347,7 +370,8 @@ impl PostureQp {
             live: vec![true; cols.n_var],
             red_row: (0..rows.n_row).collect(),
             red_col: (0..cols.n_var).collect(),
-            built_for: (Vec::new(), Vec::new(), Vec::new()),
+            built_for: (Vec::new(), Vec::new(), Vec::new(), false),
+            projected: None,
             red_pat: Vec::new(),
             red_nz: Vec::new(),
             red_p_pat: Vec::new(),
@@ -359,6 +383,8 @@ impl PostureQp {
             sub_q: vec![0.0; cols.n_var],
             sub_p_dq: vec![0.0; n * n],
             densified: vec![false; rows.n_row],
+            has_dq: vec![false; rows.n_row],
+            sticky: vec![false; rows.n_row],
             ax: vec![0.0; rows.n_row],
             want: vec![true; rows.n_row],
             screen: true,
@@ -375,6 +401,9 @@ impl PostureQp {
             a_colptr[c + 1] += a_colptr[c];
         }
         qp.a_colptr = a_colptr;
+        for &(r, c) in &qp.a_pattern {
+            qp.has_dq[r] |= c < n;
+        }
         qp.forget_solver();
         Ok(qp)
     }
@@ -467,8 +496,8 @@ impl PostureQp {
     /// earlier QPs.
     pub fn forget_solver(&mut self) {
         self.solver = None;
-        let r = self.screenable();
-        self.kept[r].iter_mut().for_each(|k| *k = false);
+        let r = self.rows.limit;
+        self.sticky[r..].iter_mut().for_each(|k| *k = false);
         self.split.iter_mut().for_each(|s| *s = Split::Plus);
         self.elastic = !self.screen;
     }
@@ -476,7 +505,12 @@ impl PostureQp {
     /// The rows that may be left out: the capacity rows, clearances, balance and posture zones
     /// (the equalities, bounds and joint limits always stay).
     fn screenable(&self) -> std::ops::Range<usize> {
-        self.rows.cap..self.rows.n_row
+        if self.projected.is_some() {
+            // the joint limits are dense over the null space's coordinates
+            self.rows.limit..self.rows.n_row
+        } else {
+            self.rows.cap..self.rows.n_row
+        }
     }
 
     /// Chooses each joint's torque split: a joint whose torque no short step can turn round
@@ -559,6 +593,87 @@ impl PostureQp {
         }
     }
 
+    /// With hard equality rows (not [`Self::elastic`]), writes the posture step on their null
+    /// space: `Δq = Δq_p + Z y`, `Δq_p` the least-norm step meeting them and Z an orthonormal
+    /// basis of their null space (from the QR factors `Jᵀ = Q R`). Every row's posture part
+    /// becomes `A_dq Z` over `y` (stored in the first `n_y` posture columns) and its b loses
+    /// `A_dq Δq_p`; P's posture block becomes `Zᵀ P Z` and q `Zᵀ (q + P Δq_p)`. The equality
+    /// rows leave the solver's problem (the factorisation no longer carries them over the dense
+    /// posture block) and their multipliers are recovered in [`Self::expand`]. Contradictory
+    /// rows set the slacks free; dependent rows stay in the solver's problem.
+    fn project(&mut self) {
+        use nalgebra::{DMatrix, DVector};
+        self.projected = None;
+        let (n, m, r) = (self.sizes.n, self.sizes.m, self.rows);
+        if !self.screen || self.elastic || m == 0 {
+            return;
+        }
+        let used: Vec<usize> = (r.eq..r.eq + m)
+            .filter(|&i| self.sub_a_dq[i * n..(i + 1) * n].iter().any(|&v| v != 0.0))
+            .collect();
+        if (r.eq..r.eq + m).any(|i| !used.contains(&i) && self.sub_b[i] != 0.0) {
+            self.elastic = true;
+            return;
+        }
+        let k = used.len();
+        if k == 0 || k >= n {
+            return;
+        }
+        let jt = DMatrix::from_fn(n, k, |row, col| self.sub_a_dq[used[col] * n + row]);
+        let qr = jt.qr();
+        let rr = qr.r();
+        let largest = (0..k).map(|i| rr[(i, i)].abs()).fold(0.0f64, f64::max);
+        if (0..k).any(|i| rr[(i, i)].abs() <= 1e-9 * largest) {
+            return;
+        }
+        let mut qt = DMatrix::<f64>::identity(n, n);
+        qr.q_tr_mul(&mut qt);
+        let q1 = qt.rows(0, k).transpose();
+        let z = qt.rows(k, n - k).transpose();
+        let b = DVector::from_fn(k, |i, _| self.sub_b[used[i]]);
+        let Some(w) = rr.transpose().solve_lower_triangular(&b) else {
+            return;
+        };
+        let dq_p = &q1 * w;
+        let n_y = n - k;
+        let mut row_y = vec![0.0; n_y];
+        for row in 0..r.n_row {
+            if !self.has_dq[row] && !self.densified[row] {
+                continue;
+            }
+            self.densified[row] = true;
+            let a = &self.sub_a_dq[row * n..(row + 1) * n];
+            self.sub_b[row] -= (0..n).map(|j| a[j] * dq_p[j]).sum::<f64>();
+            for (c, v) in row_y.iter_mut().enumerate() {
+                *v = (0..n).map(|j| a[j] * z[(j, c)]).sum();
+            }
+            let a = &mut self.sub_a_dq[row * n..(row + 1) * n];
+            a[..n_y].copy_from_slice(&row_y);
+            a[n_y..].iter_mut().for_each(|v| *v = 0.0);
+        }
+        let p = DMatrix::from_row_slice(n, n, &self.sub_p_dq);
+        let q = DVector::from_column_slice(&self.sub_q[..n]);
+        let qy = z.transpose() * (q + &p * &dq_p);
+        let py = z.transpose() * &p * &z;
+        self.sub_p_dq.iter_mut().for_each(|v| *v = 0.0);
+        for i in 0..n_y {
+            for j in 0..n_y {
+                self.sub_p_dq[i * n + j] = 0.5 * (py[(i, j)] + py[(j, i)]);
+            }
+        }
+        for j in 0..n {
+            self.sub_q[j] = if j < n_y { qy[j] } else { 0.0 };
+        }
+        self.projected = Some(Projection {
+            rows: used,
+            dq_p: dq_p.iter().copied().collect(),
+            n_y,
+            z: z.into_owned(),
+            q1: q1.into_owned(),
+            r: rr,
+        });
+    }
+
     /// Which rows and columns the solver's problem has: every row and column but the bound
     /// rows and columns of the substituted or zeroed torques, the split rows of substituted
     /// torques, the equality slacks unless [`Self::elastic`], and the screenable rows that a
@@ -580,15 +695,23 @@ impl PostureQp {
                 .map(|v| v * v)
                 .sum::<f64>()
                 .sqrt();
-            want[i] = self.kept[i] || self.sub_b[i] <= SCREEN_REACH * norm;
+            // a capacity row on a torque variable reaches as far as the torque does
+            let torque_reach = match i.checked_sub(r.cap) {
+                Some(k) if k < 2 * a && self.split[k % a] == Split::Both => {
+                    let t = r.torque + k % a;
+                    let d = self.sub_a_dq[t * n..(t + 1) * n]
+                        .iter()
+                        .map(|v| v * v)
+                        .sum::<f64>()
+                        .sqrt();
+                    self.a(i, self.cols.s_plus + k).abs() * d
+                }
+                _ => 0.0,
+            };
+            want[i] = self.sticky[i] || self.sub_b[i] <= SCREEN_REACH * (norm + torque_reach);
         }
         for i in 0..a {
-            let both = self.split[i] == Split::Both;
-            want[r.torque + i] = both;
-            if both {
-                want[r.cap + i] = true;
-                want[r.cap + a + i] = true;
-            }
+            want[r.torque + i] = self.split[i] == Split::Both;
         }
         self.set_live(want);
     }
@@ -598,7 +721,7 @@ impl PostureQp {
         let (c, r, sz) = (self.cols, self.rows, self.sizes);
         for col in 0..c.n_var {
             let live = if col < c.s_plus {
-                true
+                self.projected.as_ref().is_none_or(|p| col - c.dq < p.n_y)
             } else if col < c.e {
                 self.split[(col - c.s_plus) % sz.a] == Split::Both
             } else if col < c.v_cap {
@@ -613,6 +736,9 @@ impl PostureQp {
                 want[b] = live;
             }
         }
+        for i in r.eq..r.eq + sz.m {
+            want[i] = self.projected.is_none();
+        }
     }
 
     /// Sets the kept rows and their maps, and the solver problem's pattern when they changed;
@@ -621,11 +747,15 @@ impl PostureQp {
         let changed = want != self.kept.as_slice()
             || self.live != self.built_for.1
             || self.split != self.built_for.2
+            || self.projected.is_some() != self.built_for.3
             || self.built_for.0.is_empty();
         if !changed {
             return false;
         }
         self.kept.copy_from_slice(want);
+        for i in self.screenable() {
+            self.sticky[i] |= self.kept[i];
+        }
         let n = self.sizes.n;
         let mut next = 0;
         for (i, &k) in self.kept.iter().enumerate() {
@@ -666,7 +796,12 @@ impl PostureQp {
             }
         }
         self.red_p_nz.resize(self.red_p_pat.len(), 0.0);
-        self.built_for = (self.kept.clone(), self.live.clone(), self.split.clone());
+        self.built_for = (
+            self.kept.clone(),
+            self.live.clone(),
+            self.split.clone(),
+            self.projected.is_some(),
+        );
         true
     }
 
@@ -736,6 +871,12 @@ impl PostureQp {
                 r => z[r],
             };
         }
+        if let Some(pj) = &self.projected {
+            // Δq = Δq_p + Z y
+            for k in 0..n {
+                self.x[k] = pj.dq_p[k] + (0..pj.n_y).map(|c| pj.z[(k, c)] * x[c]).sum::<f64>();
+            }
+        }
         for i in 0..self.sizes.a {
             let Some((c, _)) = self.split_cols(i) else {
                 continue;
@@ -753,6 +894,30 @@ impl PostureQp {
             let at = self.a(t, c);
             let rest = self.p_diag[c] * self.x[c] + self.q[c] + self.col_dot(c, &self.z, t);
             self.z[t] = -rest / at;
+        }
+        if let Some(pj) = self.projected.take() {
+            // the equality rows' multipliers: Jᵀ z_eq = −g, g the whole QP's posture
+            // stationarity without them; least squares through Jᵀ = Q₁ R
+            let eq = self.rows.eq..self.rows.eq + self.sizes.m;
+            let mut g = nalgebra::DVector::<f64>::zeros(n);
+            for k in 0..n {
+                g[k] = (0..n)
+                    .map(|j| self.p_dq[k * n + j] * self.x[j])
+                    .sum::<f64>()
+                    + self.q[k];
+            }
+            for (v, &(r, c)) in self.a_nz.iter().zip(&self.a_pattern) {
+                if c < n && !eq.contains(&r) {
+                    g[c] += v * self.z[r];
+                }
+            }
+            let rhs = -(pj.q1.transpose() * g);
+            if let Some(z_eq) = pj.r.solve_upper_triangular(&rhs) {
+                for (i, &row) in pj.rows.iter().enumerate() {
+                    self.z[row] = z_eq[i];
+                }
+            }
+            self.projected = Some(pj);
         }
         for col in self.cols.s_plus..self.cols.n_var {
             if !self.live[col] && !self.is_substituted(col) {
@@ -790,8 +955,15 @@ impl PostureQp {
     /// whole QP's optimality conditions, with the multipliers recovered in [`Self::expand`].
     pub fn solve(&mut self) -> Result<bool, QpError> {
         let mut want = std::mem::take(&mut self.want);
+        // the slacks stay free only while the targets conflict (the last solution used them);
+        // a multiplier above the penalty is not kept: the SQP raises the penalty after a solve
+        if self.screen && self.elastic {
+            let c = self.cols;
+            self.elastic = self.x[c.e..c.v_cap].iter().any(|v| v.abs() > SCREEN_TOL);
+        }
         self.choose_splits();
         self.substitute();
+        self.project();
         self.choose_rows(&mut want);
         let (mut xs, mut zs) = (Vec::new(), Vec::new());
         loop {
@@ -846,7 +1018,9 @@ impl PostureQp {
                 if !self.elastic {
                     // the hard equality rows may be what cannot be met
                     self.elastic = true;
-                    self.set_live(&mut want);
+                    self.substitute();
+                    self.project();
+                    self.choose_rows(&mut want);
                     continue;
                 }
                 self.want = want;
@@ -873,7 +1047,7 @@ impl PostureQp {
         self.a_times(&self.x, &mut ax);
         for i in self.screenable() {
             if !self.kept[i] && ax[i] - self.b[i] > SCREEN_TOL * (1.0 + self.b[i].abs()) {
-                want[i] = true;
+                self.sticky[i] = true;
                 again = true;
             }
         }
@@ -887,9 +1061,6 @@ impl PostureQp {
             let zd = self.z[self.bound_row(d).expect("a torque column")];
             if turned || zd < -SCREEN_DUAL_TOL * (1.0 + self.q[d].abs()) {
                 self.split[i] = Split::Both;
-                want[self.rows.torque + i] = true;
-                want[self.rows.cap + i] = true;
-                want[self.rows.cap + self.sizes.a + i] = true;
                 again = true;
             }
         }
@@ -905,7 +1076,8 @@ impl PostureQp {
         }
         if again {
             self.substitute();
-            self.set_live(want);
+            self.project();
+            self.choose_rows(want);
         }
         again
     }
@@ -1004,16 +1176,14 @@ mod tests {
         assert_eq!(screened.solves, 3);
     }
 
-    /// A QP with one joint whose torque is `τ = 1 + Δq₀` and one target row `Δq₁ = ½`:
-    /// `min ½|Δq|² + g (s⁺ + s⁻) + μ (e⁺ + e⁻)` (the slacks' quadratic penalty negligible).
-    /// Closed forms: for `g < 1` the torque keeps its sign, `Δq₀ = −g`; for `g ≥ 1` it ends
-    /// at zero, `Δq₀ = −1`; for `μ ≥ ½` the target is met, `Δq₁ = ½`; below, `Δq₁ = μ`.
-    fn split_qp(screen: bool, g: f64, mu: f64) -> PostureQp {
+    /// A cleared QP over a two-joint step with `sizes` (`n` = 2), P's posture block the
+    /// identity and both joints' limit rows `Δq ≤ 10`.
+    fn unit_qp(screen: bool, a: usize, m: usize, c: usize) -> PostureQp {
         let sizes = QpSizes {
             n: 2,
-            a: 1,
-            m: 1,
-            c: 2,
+            a,
+            m,
+            c,
             k: 0,
             e: 0,
             z: 0,
@@ -1021,10 +1191,36 @@ mod tests {
         let mut qp = PostureQp::new(sizes, QpPrecision::default(), &[]).unwrap();
         qp.screen = screen;
         qp.forget_solver();
-        let (r, c) = (qp.rows, qp.cols);
         qp.clear();
         qp.p_dq[0] = 1.0;
         qp.p_dq[3] = 1.0;
+        for j in 0..2 {
+            qp.set_a(qp.rows.limit + j, qp.cols.dq + j, 1.0);
+            qp.b[qp.rows.limit + j] = 10.0;
+        }
+        qp
+    }
+
+    /// Every row's multiplier of the reduced QP (recovered where the solver had no row) is the
+    /// whole QP's.
+    fn same_multipliers(whole: &PostureQp, reduced: &PostureQp, what: &str) {
+        for i in 0..whole.rows.n_row {
+            assert!(
+                (whole.z[i] - reduced.z[i]).abs() < 1e-5,
+                "{what}: z[{i}] {} {}",
+                whole.z[i],
+                reduced.z[i]
+            );
+        }
+    }
+
+    /// A QP with one joint whose torque is `τ = 1 + Δq₀` and one target row `Δq₁ = ½`:
+    /// `min ½|Δq|² + g (s⁺ + s⁻) + μ (e⁺ + e⁻)` (the slacks' quadratic penalty negligible).
+    /// Closed forms: for `g < 1` the torque keeps its sign, `Δq₀ = −g`; for `g ≥ 1` it ends
+    /// at zero, `Δq₀ = −1`; for `μ ≥ ½` the target is met, `Δq₁ = ½`; below, `Δq₁ = μ`.
+    fn split_qp(screen: bool, g: f64, mu: f64) -> PostureQp {
+        let mut qp = unit_qp(screen, 1, 1, 2);
+        let (r, c) = (qp.rows, qp.cols);
         qp.set_a(r.torque, c.dq, 1.0);
         qp.set_a(r.torque, c.s_plus, -1.0);
         qp.set_a(r.torque, c.s_minus, 1.0);
@@ -1054,8 +1250,6 @@ mod tests {
         qp.p_diag[c.v_cap] = 1e-6;
         qp.p_diag[c.v_geo] = 1e-6;
         for j in 0..2 {
-            qp.set_a(r.limit + j, c.dq + j, 1.0);
-            qp.b[r.limit + j] = 10.0;
             qp.set_a(r.cap + j, [c.s_plus, c.s_minus][j], 1.0);
             qp.set_a(r.cap + j, c.v_cap, -1.0);
             qp.b[r.cap + j] = 1e3;
@@ -1088,17 +1282,46 @@ mod tests {
                     reduced.x
                 );
             }
-            // every multiplier the SQP reads (all but the slacks' own bounds, which the whole
-            // QP leaves free where a slack is 0 and its cost is a kink)
-            for i in 0..whole.rows.n_row {
-                assert!(
-                    (whole.z[i] - reduced.z[i]).abs() < 1e-5,
-                    "g {g}, μ {mu}: z[{i}] {} {}",
-                    whole.z[i],
-                    reduced.z[i]
-                );
-            }
+            same_multipliers(&whole, &reduced, &format!("g {g}, μ {mu}"));
             assert_eq!((whole.solves, reduced.solves), (1, solves), "g {g}, μ {mu}");
+        }
+    }
+
+    /// An equality row without posture entries reads `0 = b`: with `b = 0` the null-space
+    /// step leaves it out; with `b ≠ 0` it cannot be met and the slacks take it (at the
+    /// penalty `μ`), the posture step unchanged. Both against the whole QP.
+    #[test]
+    fn an_empty_equality_row_is_skipped_or_taken_by_its_slacks() {
+        for b in [0.0, 0.3] {
+            let build = |screen: bool| {
+                let mut qp = unit_qp(screen, 0, 2, 0);
+                let (r, c) = (qp.rows, qp.cols);
+                qp.q[c.dq] = -1.0;
+                qp.set_a(r.eq, c.dq + 1, 1.0);
+                qp.b[r.eq] = 0.5;
+                qp.b[r.eq + 1] = b;
+                for i in 0..2 {
+                    qp.set_a(r.eq + i, c.e + i, 1.0);
+                    qp.set_a(r.eq + i, c.e + 2 + i, -1.0);
+                }
+                for (k, col) in [c.v_cap, c.v_geo, c.e, c.e + 1, c.e + 2, c.e + 3]
+                    .into_iter()
+                    .enumerate()
+                {
+                    qp.set_a(r.nonneg + k, col, -1.0);
+                    qp.q[col] = 1.0;
+                    qp.p_diag[col] = 1e-9;
+                }
+                qp
+            };
+            let (mut whole, mut reduced) = (build(false), build(true));
+            assert!(whole.solve().unwrap() && reduced.solve().unwrap());
+            let c = whole.cols;
+            for x in [&whole.x, &reduced.x] {
+                assert!((x[c.dq] - 1.0).abs() < 1e-6 && (x[c.dq + 1] - 0.5).abs() < 1e-6);
+                assert!((x[c.e + 1] - x[c.e + 3] - b).abs() < 1e-6, "b {b}: {x:?}");
+            }
+            same_multipliers(&whole, &reduced, &format!("b {b}"));
         }
     }
 }
