@@ -263,6 +263,21 @@ impl Default for QpPrecision {
     }
 }
 
+/// Each flagged entry's index among the flagged ones (`usize::MAX` for the others), into `map`;
+/// returns how many are flagged.
+fn index_among(flags: &[bool], map: &mut [usize]) -> usize {
+    let mut next = 0;
+    for (m, &f) in map.iter_mut().zip(flags) {
+        *m = if f {
+            next += 1;
+            next - 1
+        } else {
+            usize::MAX
+        };
+    }
+    next
+}
+
 impl PostureQp {
     /// A QP with the given sizes and solver precision; `capacity_q` adds, per capacity row, the
     /// posture variables its strength depends on (pairs of capacity row, posture variable).
@@ -757,26 +772,10 @@ impl PostureQp {
             self.sticky[i] |= self.kept[i];
         }
         let n = self.sizes.n;
-        let mut next = 0;
-        for (i, &k) in self.kept.iter().enumerate() {
-            self.red_row[i] = if k {
-                next += 1;
-                next - 1
-            } else {
-                usize::MAX
-            };
-        }
-        self.red_b.resize(next, 0.0);
-        let mut next = 0;
-        for (j, &l) in self.live.iter().enumerate() {
-            self.red_col[j] = if l {
-                next += 1;
-                next - 1
-            } else {
-                usize::MAX
-            };
-        }
-        self.red_q.resize(next, 0.0);
+        let n_kept = index_among(&self.kept, &mut self.red_row);
+        self.red_b.resize(n_kept, 0.0);
+        let n_live = index_among(&self.live, &mut self.red_col);
+        self.red_q.resize(n_live, 0.0);
         self.red_pat.clear();
         for col in (0..self.cols.n_var).filter(|&j| self.live[j]) {
             for row in (0..self.rows.n_row).filter(|&i| self.kept[i]) {
