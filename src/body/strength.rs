@@ -348,6 +348,24 @@ impl Pchip {
         Pchip { x, y, d }
     }
 
+    /// Value, slope and curvature at `t` (slope and curvature 0 beyond the ends, where the
+    /// value is held).
+    pub fn eval2(&self, t: f64) -> (f64, f64, f64) {
+        let n = self.x.len();
+        if t.is_nan() || t <= self.x[0] || t >= self.x[n - 1] {
+            let (v, dv) = self.eval(t);
+            return (v, dv, 0.0);
+        }
+        let (v, dv) = self.eval(t);
+        let i = self.x.partition_point(|&xi| xi <= t) - 1;
+        let h = self.x[i + 1] - self.x[i];
+        let s = (t - self.x[i]) / h;
+        let (c00, c10, c01, c11) = (12.0 * s - 6.0, 6.0 * s - 4.0, 6.0 - 12.0 * s, 6.0 * s - 2.0);
+        let ddv = (c00 * self.y[i] + c01 * self.y[i + 1]) / (h * h)
+            + (c10 * self.d[i] + c11 * self.d[i + 1]) / h;
+        (v, dv, ddv)
+    }
+
     /// Value and slope at `t` (slope 0 beyond the ends, where the value is held).
     pub fn eval(&self, t: f64) -> (f64, f64) {
         let n = self.x.len();
@@ -460,6 +478,34 @@ impl HalfJoint {
                 match out.iter_mut().find(|(j, _)| *j == i) {
                     Some((_, v)) => *v += d,
                     None => out.push((i, d)),
+                }
+            }
+        }
+    }
+
+    /// ∂²MVC/∂q_i∂q_k at `q_rad` as (i, k, value) triples (both orders of a pair; a pair may
+    /// appear more than once, the values to be added), into `out`.
+    pub fn mvc_hessian(&self, q_rad: &[f64], out: &mut Vec<(usize, usize, f64)>) {
+        out.clear();
+        let at = |p: &PostureFactor| p.curve.eval2(p.angle(q_rad));
+        for (a, pa) in self.posture.iter().enumerate() {
+            let (_, da, dda) = at(pa);
+            for (b, pb) in self.posture.iter().enumerate() {
+                // the product's second derivative in the angles of factors a and b
+                let mut t = if a == b { dda } else { da * at(pb).1 };
+                for (r, pr) in self.posture.iter().enumerate() {
+                    if r != a && r != b {
+                        t *= at(pr).0;
+                    }
+                }
+                let t = self.mvc_nm * t;
+                if t == 0.0 {
+                    continue;
+                }
+                for &i in &pa.q_indices {
+                    for &k in &pb.q_indices {
+                        out.push((i, k, t));
+                    }
                 }
             }
         }
@@ -662,7 +708,15 @@ mod tests {
             let h = 1e-6;
             let fd = (p.eval(t + h).0 - p.eval(t - h).0) / (2.0 * h);
             assert!((p.eval(t).1 - fd).abs() < 1e-6, "{t}");
+            // the curvature is the slope's central difference, value and slope as `eval`'s
+            let fd2 = (p.eval(t + h).1 - p.eval(t - h).1) / (2.0 * h);
+            let (v, dv, ddv) = p.eval2(t);
+            assert!((ddv - fd2).abs() < 1e-6, "{t}: {ddv} vs {fd2}");
+            assert_eq!((v, dv), p.eval(t));
         }
+        // held beyond the ends: no slope, no curvature
+        assert_eq!(p.eval2(-1.0), (1.0, 0.0, 0.0));
+        assert_eq!(p.eval2(5.0), (0.3, 0.0, 0.0));
         // monotone data stay monotone between the points
         let m = Pchip::new(vec![0.0, 1.0, 3.0], vec![0.0, 0.1, 1.0]);
         let mut last = -1.0;
@@ -670,6 +724,74 @@ mod tests {
             let v = m.eval(i as f64 / 100.0).0;
             assert!(v >= last);
             last = v;
+        }
+    }
+
+    /// ∂²MVC/∂q² of a half-joint whose strength is the product of two curves, one of them of
+    /// two joints' summed angle, against central differences of its gradient.
+    #[test]
+    fn mvc_second_derivatives_match_differences_of_the_gradient() {
+        let curve = |y: Vec<f64>| Pchip::new(vec![-1.0, 0.0, 0.8, 1.6], y);
+        let hj = HalfJoint {
+            id: "test+".into(),
+            joint: "test".into(),
+            q_index: 0,
+            direction: Direction::Positive,
+            group: "test".into(),
+            region: "test".into(),
+            mvc_nm: 120.0,
+            male: MeanSd {
+                mean_nm: 120.0,
+                sd_nm: 10.0,
+            },
+            female: MeanSd {
+                mean_nm: 80.0,
+                sd_nm: 10.0,
+            },
+            posture: vec![
+                PostureFactor {
+                    q_indices: vec![0, 2],
+                    curve: curve(vec![0.7, 1.0, 0.9, 0.5]),
+                },
+                PostureFactor {
+                    q_indices: vec![2],
+                    curve: curve(vec![0.8, 1.0, 1.1, 0.6]),
+                },
+            ],
+            source: "test".into(),
+        };
+        let n = 3;
+        for q in [[0.3, 0.0, 0.2], [-0.4, 0.5, 0.9], [0.7, -0.2, -0.5]] {
+            let mut exact = vec![0.0; n * n];
+            let mut pairs = Vec::new();
+            hj.mvc_hessian(&q, &mut pairs);
+            for &(i, k, v) in &pairs {
+                exact[i * n + k] += v;
+            }
+            let h = 1e-6;
+            let mut grad = Vec::new();
+            for k in 0..n {
+                let mut side = [vec![0.0; n], vec![0.0; n]];
+                for (s, x) in [q[k] - h, q[k] + h].into_iter().enumerate() {
+                    let mut moved = q;
+                    moved[k] = x;
+                    hj.mvc_gradient(&moved, &mut grad);
+                    for &(i, v) in &grad {
+                        side[s][i] += v;
+                    }
+                }
+                for i in 0..n {
+                    let fd = (side[1][i] - side[0][i]) / (2.0 * h);
+                    assert!(
+                        (exact[i * n + k] - fd).abs() < 1e-5 * 120.0,
+                        "{q:?} ({i}, {k}): {} vs {fd}",
+                        exact[i * n + k]
+                    );
+                }
+            }
+            // the joint no curve reads has no curvature; the two others do
+            assert!((0..n).all(|k| exact[n + k] == 0.0 && exact[k * n + 1] == 0.0));
+            assert!(exact[0] != 0.0 && exact[2 * n + 2] != 0.0 && exact[2] != 0.0);
         }
     }
 }

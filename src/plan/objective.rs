@@ -69,6 +69,13 @@ pub const END_ZONE: f64 = 0.1;
 pub trait LoadCost: Send + Sync {
     /// Value; fills `grad[h] = ∂J/∂f_h` and `curv[h] ≥ 0`, a diagonal curvature bound.
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64;
+    /// The exact second derivatives at `f`, with the gradient into `grad`:
+    /// `∂²J/∂f_h∂f_k = diag[h]·δ_hk − c·grad[h]·grad[k]`; returns `c`. By default
+    /// [`Self::eval`]'s diagonal is exact (`c = 0`).
+    fn exact_curvature(&mut self, f: &[f64], grad: &mut [f64], diag: &mut [f64]) -> f64 {
+        self.eval(f, grad, diag);
+        0.0
+    }
     /// Value only.
     fn value(&mut self, f: &[f64]) -> f64;
     /// The load half-joint `h` may hold in this phase without being exhausted (its lowest
@@ -101,6 +108,9 @@ pub struct FatigueCost<'t> {
     /// about a third of [`Dual2`]s).
     value_cache: Vec<Option<(u64, f64, f64)>>,
     bound_cache: Vec<Option<(u64, (f64, f64))>>,
+    /// Scratch of the log-sum: each half-joint's (scaled total, ln scale) and weight.
+    terms: Vec<(f64, f64)>,
+    weights: Vec<f64>,
 }
 
 impl<'t> FatigueCost<'t> {
@@ -143,6 +153,8 @@ impl<'t> FatigueCost<'t> {
             total_cache: vec![None; nh],
             value_cache: vec![None; nh],
             bound_cache: vec![None; nh],
+            terms: Vec::with_capacity(nh),
+            weights: Vec::with_capacity(nh),
         }
     }
 
@@ -311,28 +323,53 @@ impl LoadCost for FatigueCost<'_> {
     }
 
     fn eval(&mut self, f: &[f64], grad: &mut [f64], curv: &mut [f64]) -> f64 {
-        let n = f.len();
-        let mut terms = Vec::with_capacity(n);
-        let mut derivs = Vec::with_capacity(n);
-        for h in 0..n {
-            let (u, s) = self.cached_total(h, f[h]);
-            terms.push((u.v, s));
-            derivs.push((u.d, u.dd));
-        }
-        let mut w = vec![0.0; n];
-        let j = log_sum(&terms, &mut w);
-        for h in 0..n {
-            grad[h] = derivs[h].0 * w[h];
-            curv[h] = derivs[h].1.max(0.0) * w[h];
+        let j = self.derivatives(f, grad, curv);
+        for c in curv.iter_mut() {
+            *c = c.max(0.0);
         }
         j
     }
 
+    /// `J = ln(S + ε)`, `S = Σ_h U_h`: `∂²J/∂f_h∂f_k = δ_hk U_h″/(S + ε) − ∂J/∂f_h · ∂J/∂f_k`.
+    fn exact_curvature(&mut self, f: &[f64], grad: &mut [f64], diag: &mut [f64]) -> f64 {
+        self.derivatives(f, grad, diag);
+        1.0
+    }
+
     fn value(&mut self, f: &[f64]) -> f64 {
+        let mut terms = std::mem::take(&mut self.terms);
+        terms.clear();
+        terms.extend((0..f.len()).map(|h| self.cached_value(h, f[h])));
+        let mut w = std::mem::take(&mut self.weights);
+        w.resize(f.len(), 0.0);
+        let j = log_sum(&terms, &mut w);
+        (self.terms, self.weights) = (terms, w);
+        j
+    }
+}
+
+impl FatigueCost<'_> {
+    /// J, its gradient `∂J/∂f_h = U_h′/(S + ε)` and the diagonal `U_h″/(S + ε)` of its
+    /// curvature (the whole curvature less the rank-one `−∇J ∇Jᵀ` of the logarithm).
+    fn derivatives(&mut self, f: &[f64], grad: &mut [f64], diag: &mut [f64]) -> f64 {
         let n = f.len();
-        let terms: Vec<(f64, f64)> = (0..n).map(|h| self.cached_value(h, f[h])).collect();
-        let mut w = vec![0.0; n];
-        log_sum(&terms, &mut w)
+        let mut terms = std::mem::take(&mut self.terms);
+        terms.clear();
+        for h in 0..n {
+            let (u, s) = self.cached_total(h, f[h]);
+            terms.push((u.v, s));
+            grad[h] = u.d;
+            diag[h] = u.dd;
+        }
+        let mut w = std::mem::take(&mut self.weights);
+        w.resize(n, 0.0);
+        let j = log_sum(&terms, &mut w);
+        for h in 0..n {
+            grad[h] *= w[h];
+            diag[h] *= w[h];
+        }
+        (self.terms, self.weights) = (terms, w);
+        j
     }
 }
 
@@ -777,6 +814,66 @@ mod tests {
         // beyond the onset the curvature bound includes the zone's full 2·30/range²
         let beyond = slope(onset_deg + 1.0).1;
         assert!((beyond - 2.0 * (10.0 + zone_weight) / (range * range)).abs() < 1e-9);
+    }
+
+    /// The fatigue cost's exact curvature in the loads, `diag·δ − c·∇J ∇Jᵀ`, against central
+    /// differences of its gradient: every entry (the rank-one term couples all half-joints)
+    /// within 1e-5 of the largest, on the shelf task with the first phase's loads moved.
+    #[test]
+    fn the_fatigue_costs_curvature_is_the_derivative_of_its_gradient() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tasks/shelf.yaml");
+        let task = Task::from_file(path).unwrap();
+        let nh = task.half_joints.len();
+        // loads between 0 and 0.3, some half-joints unloaded
+        let f: Vec<f64> = (0..nh)
+            .map(|h| {
+                if h % 3 == 0 {
+                    0.0
+                } else {
+                    0.02 + 0.28 * ((h * 7) % 11) as f64 / 10.0
+                }
+            })
+            .collect();
+        let phase_loads = vec![f.clone(); task.phases.len()];
+        let fresh = vec![MaState::FRESH; nh];
+        let mut cost = FatigueCost::new(&task, &[0], &phase_loads, &f, &fresh, task.cycles as u64);
+        let (mut g, mut diag) = (vec![0.0; nh], vec![0.0; nh]);
+        let c = cost.exact_curvature(&f, &mut g, &mut diag);
+        assert_eq!(c, 1.0);
+        let mut clipped = vec![0.0; nh];
+        let j = cost.eval(&f, &mut vec![0.0; nh], &mut clipped);
+        assert_eq!(j, cost.value(&f));
+        let step = 1e-6;
+        let mut exact = vec![vec![0.0; nh]; nh];
+        let mut fd = vec![vec![0.0; nh]; nh];
+        let mut largest = 0.0f64;
+        for k in 0..nh {
+            let mut gk = [vec![0.0; nh], vec![0.0; nh]];
+            for (side, x) in [f[k] - step, f[k] + step].into_iter().enumerate() {
+                let mut moved = f.clone();
+                moved[k] = x.max(0.0);
+                cost.eval(&moved, &mut gk[side], &mut vec![0.0; nh]);
+            }
+            let width = (f[k] + step) - (f[k] - step).max(0.0);
+            for h in 0..nh {
+                fd[h][k] = (gk[1][h] - gk[0][h]) / width;
+                exact[h][k] = if h == k { diag[h] } else { 0.0 } - c * g[h] * g[k];
+                largest = largest.max(fd[h][k].abs());
+            }
+        }
+        assert!(largest > 1e-3, "nothing to compare: {largest}");
+        for h in 0..nh {
+            // eval's diagonal is the exact one, clipped at zero
+            assert_eq!(clipped[h], diag[h].max(0.0));
+            for k in 0..nh {
+                assert!(
+                    (exact[h][k] - fd[h][k]).abs() <= 1e-5 * largest,
+                    "({h}, {k}): {} vs differences {}",
+                    exact[h][k],
+                    fd[h][k]
+                );
+            }
+        }
     }
 
     #[test]

@@ -155,12 +155,17 @@ impl Stepping {
         self.weight * v + self.asymmetry.value(feet)
     }
 
+    /// Whether the cost depends on the posture at all (steps to price, or an asymmetry term).
+    pub fn is_active(&self) -> bool {
+        (self.weight != 0.0 && !self.neighbours.is_empty()) || !self.asymmetry.loads.is_empty()
+    }
+
     /// Adds the cost's gradient in q at the forward kinematics in `data` to `grad`.
     pub fn add_gradient(&self, task: &Task, data: &StaticsData, feet: &FeetNow, grad: &mut [f64]) {
-        let steps = self.weight != 0.0 && !self.neighbours.is_empty();
-        if !steps && self.asymmetry.loads.is_empty() {
+        if !self.is_active() {
             return;
         }
+        let steps = self.weight != 0.0 && !self.neighbours.is_empty();
         let Some(st) = &task.stance else { return };
         let m: &BodyModel = &task.model;
         let d02 = STEP_SCALE_M * STEP_SCALE_M;
