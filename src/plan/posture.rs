@@ -58,6 +58,17 @@ pub enum Other {
     HeldObject,
 }
 
+impl Other {
+    /// Which other side this is, whatever the witness point (kind, index).
+    pub fn id(&self) -> (u8, usize) {
+        match *self {
+            Other::Obstacle(i) => (0, i),
+            Other::Body { link, .. } => (1, link),
+            Other::HeldObject => (2, 0),
+        }
+    }
+}
+
 /// The task's body and scene as the optimiser sees them (fixed for a task).
 #[derive(Debug, Clone)]
 pub struct Scene {

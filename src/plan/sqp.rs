@@ -26,8 +26,9 @@
 //! **Curvature start.** The QP's posture block is `B + D + δI`: `D` the discomfort's exact
 //! diagonal, δ the damping, and `B` a damped BFGS (Powell) approximation of the rest of the
 //! Lagrangian's curvature in q. `B` does not start from a scaled identity but from the
-//! Jacobian of the objective's explicit posture gradient (the strength's posture dependence and
-//! the discomfort beyond its diagonal), by central differences, symmetrised and with its
+//! Jacobian of the objective's explicit posture gradient (the strength's posture dependence
+//! through the torques, the MVC curves and the load cost's exact curvature, derived
+//! analytically; the step cost's by differences of its gradient), symmetrised and with its
 //! eigenvalues raised to 10⁻³ ([`start_curvature`]): what the curvature is when the multipliers
 //! are zero. BFGS then adds what the constraints' curvature contributes (the torques' and the
 //! hands' second derivatives) along the steps. Measured on the nine shipped tasks (held plans),
@@ -43,7 +44,7 @@
 //! [`SqpSettings::tol_kkt`] (default 1e-5); otherwise the solve reports why it stopped.
 
 use super::objective::{Discomfort, LoadCost, Shape};
-use super::posture::{PostureWork, Row, Scene, geometry_row_count};
+use super::posture::{Contact, PostureWork, Row, Scene, geometry_row_count};
 use super::qp::{PostureQp, QpError, QpPrecision, QpSizes};
 use super::stepping::Stepping;
 use super::task::Task;
@@ -184,10 +185,18 @@ pub struct SqpWork {
     pub settings: SqpSettings,
     /// The equality rows' ℓ1 penalty of the solve under way (starts at `settings.mu_eq`).
     mu_eq: f64,
-    /// The explicit curvature's finite-difference Jacobian (row-major n × n) and its scratch:
-    /// the posture moved, and the gradient at the step below.
+    /// The explicit curvature (row-major n × n, [`explicit_curvature`]) and its scratch: the
+    /// load cost's exact diagonal curvature, each half-joint's load gradient in q (nh × n), the
+    /// loads' share of J's gradient in q, a dense MVC gradient, the MVC's second derivatives;
+    /// the posture moved and the step cost's gradient either side (differences).
     hess: Vec<f64>,
+    load_curv: Vec<f64>,
+    df_dq: Vec<f64>,
+    v_dq: Vec<f64>,
+    m_dense: Vec<f64>,
+    mvc_hess: Vec<(usize, usize, f64)>,
     q_fd: Vec<f64>,
+    g_plus: Vec<f64>,
     g_minus: Vec<f64>,
     f: Vec<f64>,
     grad: Vec<f64>,
@@ -208,6 +217,10 @@ pub struct SqpWork {
     last_q: Vec<f64>,
     last_grad_l: Vec<f64>,
     last_z: Vec<f64>,
+    /// The last iterate's contacts, row by row (link, other side), and a scratch of their
+    /// multipliers.
+    last_contacts: Vec<(usize, (u8, usize))>,
+    z_scratch: Vec<f64>,
     have_last: bool,
     first_update: bool,
     reset_once: bool,
@@ -291,7 +304,13 @@ impl SqpWork {
             settings,
             mu_eq: settings.mu_eq,
             hess: vec![0.0; n * n],
+            load_curv: vec![0.0; nh],
+            df_dq: vec![0.0; nh * n],
+            v_dq: vec![0.0; n],
+            m_dense: vec![0.0; n],
+            mvc_hess: Vec::with_capacity(16),
             q_fd: vec![0.0; n],
+            g_plus: vec![0.0; n],
             g_minus: vec![0.0; n],
             f: vec![0.0; nh],
             grad: vec![0.0; nh],
@@ -309,6 +328,8 @@ impl SqpWork {
             last_q: vec![0.0; n],
             last_grad_l: vec![0.0; n],
             last_z: vec![0.0; sizes.rows().n_row],
+            last_contacts: Vec::with_capacity(settings.clearance_rows),
+            z_scratch: vec![0.0; settings.clearance_rows],
             have_last: false,
             first_update: true,
             reset_once: false,
@@ -492,15 +513,121 @@ fn posture_terms(
 /// Smallest eigenvalue of the curvature a solve starts from \[1/rad²\].
 const START_CURVATURE_FLOOR: f64 = 1e-3;
 
-/// Finite-difference step of the starting curvature \[rad or m\].
+/// Finite-difference step of the step cost's share of the starting curvature \[rad or m\].
 const START_CURVATURE_STEP: f64 = 1e-6;
 
-/// The curvature a solve starts from, into the BFGS part: the Jacobian of the explicit posture
-/// gradient of [`posture_terms`] by central differences (one-sided at a joint limit), less the
-/// discomfort's diagonal (the QP adds it exactly), symmetrised, and with its eigenvalues raised
-/// to [`START_CURVATURE_FLOOR`]. It is the Lagrangian's curvature in q with the multipliers at
-/// zero: it leaves out only what the constraints' curvature adds (the torques' and the hands'
-/// second derivatives), which BFGS learns along the steps. One eigendecomposition per solve.
+/// The Jacobian of the explicit posture gradient of [`posture_terms`] (row-major n × n,
+/// `work.hess[i·n + k] = ∂g_i/∂q_k`) at `q`, after [`build_qp`] there (the statics of `q`, their
+/// Jacobian `∂τ/∂q` and the loads in `pw` and `work`), less the discomfort's diagonal (the QP
+/// adds it exactly; its curvature is exact and the discomfort separable, so nothing of it is
+/// left). The strength's share `g_i = −Σ_h a_h ∂M_h/∂q_i`, `a_h = G_h s̄_h / M_h²` (G = ∂J/∂f,
+/// s̄ the torque held, M the MVC), is differentiated analytically:
+/// `∂g_i/∂q_k = −Σ_h (∂a_h/∂q_k ∂M_h/∂q_i + a_h ∂²M_h/∂q_i∂q_k)` with
+/// `∂a_h/∂q_k = ∂G_h/∂q_k s̄_h/M_h² + G_h ∂s̄_h/∂q_k /M_h² − 2 G_h s̄_h ∂M_h/∂q_k /M_h³`, and
+/// `∂G_h/∂q_k = Σ_l ∂²J/∂f_h∂f_l ∂f_l/∂q_k` through the loads `f_l = s̄_l/M_l` of every
+/// half-joint (the load cost's exact curvature, [`LoadCost::exact_curvature`]). The step cost's
+/// share (placed feet) by central differences of its gradient (kinematics only).
+fn explicit_curvature(
+    task: &Task,
+    scene: &Scene,
+    pw: &mut PostureWork,
+    work: &mut SqpWork,
+    prob: &mut PhaseProblem,
+    q: &[f64],
+) {
+    let n = task.model.nq();
+    work.hess.iter_mut().for_each(|x| *x = 0.0);
+    let c = prob
+        .cost
+        .exact_curvature(&work.f, &mut work.grad, &mut work.load_curv);
+    // ∂f_h/∂q for every half-joint, and ∂J_loads/∂q = Σ_h G_h ∂f_h/∂q
+    work.v_dq.iter_mut().for_each(|x| *x = 0.0);
+    for (h, hj) in task.half_joints.iter().enumerate() {
+        let row = &mut work.df_dq[h * n..(h + 1) * n];
+        let sigma = hj.direction.sign();
+        let held = sigma * pw.data.tau_nm[hj.q_index];
+        if held <= 0.0 {
+            row.iter_mut().for_each(|x| *x = 0.0);
+            continue;
+        }
+        let mvc = hj.mvc_at(q);
+        for (k, x) in row.iter_mut().enumerate() {
+            *x = sigma * pw.dtau_dq[(hj.q_index, k)] / mvc;
+        }
+        if hj.posture_dependent() {
+            hj.mvc_gradient(q, &mut work.mvc_grad);
+            for &(k, dm) in &work.mvc_grad {
+                row[k] -= held * dm / (mvc * mvc);
+            }
+        }
+        for (v, x) in work.v_dq.iter_mut().zip(row.iter()) {
+            *v += work.grad[h] * x;
+        }
+    }
+    for (h, hj) in task.half_joints.iter().enumerate() {
+        let sigma = hj.direction.sign();
+        let held = sigma * pw.data.tau_nm[hj.q_index];
+        if scene.actuated_row[hj.q_index].is_none() || !hj.posture_dependent() || held <= 0.0 {
+            continue;
+        }
+        let g = work.grad[h];
+        let mvc = hj.mvc_at(q);
+        let (m2, m3) = (mvc * mvc, mvc * mvc * mvc);
+        hj.mvc_gradient(q, &mut work.mvc_grad);
+        for &(k, dm) in &work.mvc_grad {
+            work.m_dense[k] = dm;
+        }
+        for k in 0..n {
+            let dg = work.load_curv[h] * work.df_dq[h * n + k] - c * g * work.v_dq[k];
+            let ds = sigma * pw.dtau_dq[(hj.q_index, k)];
+            let da = dg * held / m2 + g * ds / m2 - 2.0 * g * held * work.m_dense[k] / m3;
+            for &(i, dm) in &work.mvc_grad {
+                work.hess[i * n + k] -= da * dm;
+            }
+        }
+        for &(k, _) in &work.mvc_grad {
+            work.m_dense[k] = 0.0;
+        }
+        let a = g * held / m2;
+        hj.mvc_hessian(q, &mut work.mvc_hess);
+        for &(i, k, d2m) in &work.mvc_hess {
+            work.hess[i * n + k] -= a * d2m;
+        }
+    }
+    if pw.ground.is_some() && prob.stepping.is_active() {
+        let mut qf = std::mem::take(&mut work.q_fd);
+        let (mut gp, mut gm) = (
+            std::mem::take(&mut work.g_plus),
+            std::mem::take(&mut work.g_minus),
+        );
+        qf.copy_from_slice(q);
+        for k in 0..n {
+            let j = task.model.q_joint(k);
+            let hi = (q[k] + START_CURVATURE_STEP).min(j.upper_rad);
+            let lo = (q[k] - START_CURVATURE_STEP).max(j.lower_rad);
+            for (x, g) in [(lo, &mut gm), (hi, &mut gp)] {
+                qf[k] = x;
+                pw.statics(task, &qf, &prob.hand_force_n);
+                g.iter_mut().for_each(|v| *v = 0.0);
+                if let Some(r) = pw.ground {
+                    prob.stepping.add_gradient(task, &pw.data, &r.feet, g);
+                }
+            }
+            qf[k] = q[k];
+            for i in 0..n {
+                work.hess[i * n + k] += (gp[i] - gm[i]) / (hi - lo);
+            }
+        }
+        (work.q_fd, work.g_plus, work.g_minus) = (qf, gp, gm);
+        pw.statics(task, q, &prob.hand_force_n);
+    }
+}
+
+/// The curvature a solve starts from, into the BFGS part: [`explicit_curvature`] symmetrised,
+/// with its eigenvalues raised to [`START_CURVATURE_FLOOR`]. It is the Lagrangian's curvature in
+/// q with the multipliers at zero: it leaves out only what the constraints' curvature adds (the
+/// torques' and the hands' second derivatives), which BFGS learns along the steps. One
+/// eigendecomposition per solve. Called after [`build_qp`] at `q`.
 fn start_curvature(
     task: &Task,
     scene: &Scene,
@@ -510,31 +637,9 @@ fn start_curvature(
     q: &[f64],
 ) {
     let n = task.model.nq();
-    let mut qf = std::mem::take(&mut work.q_fd);
-    let mut gm = std::mem::take(&mut work.g_minus);
-    qf.copy_from_slice(q);
-    for k in 0..n {
-        let j = task.model.q_joint(k);
-        let hi = (q[k] + START_CURVATURE_STEP).min(j.upper_rad);
-        let lo = (q[k] - START_CURVATURE_STEP).max(j.lower_rad);
-        qf[k] = lo;
-        pw.statics(task, &qf, &prob.hand_force_n);
-        posture_terms(task, scene, pw, work, prob, &qf);
-        gm.copy_from_slice(&work.dq_grad);
-        qf[k] = hi;
-        pw.statics(task, &qf, &prob.hand_force_n);
-        posture_terms(task, scene, pw, work, prob, &qf);
-        qf[k] = q[k];
-        for i in 0..n {
-            work.hess[i * n + k] = (work.dq_grad[i] - gm[i]) / (hi - lo);
-        }
-    }
-    (work.q_fd, work.g_minus) = (qf, gm);
-    pw.statics(task, q, &prob.hand_force_n);
-    posture_terms(task, scene, pw, work, prob, q);
+    explicit_curvature(task, scene, pw, work, prob, q);
     let h = nalgebra::DMatrix::from_fn(n, n, |i, k| {
-        let d = if i == k { work.dq_curv[i] } else { 0.0 };
-        0.5 * (work.hess[i * n + k] + work.hess[k * n + i]) - d
+        0.5 * (work.hess[i * n + k] + work.hess[k * n + i])
     });
     let eig = h.symmetric_eigen();
     let v = &eig.eigenvectors;
@@ -784,7 +889,11 @@ fn lagrangian_gradient(work: &mut SqpWork, z_from_last: bool) {
 }
 
 /// Damped BFGS update (Powell) of the curvature with the step since the last iterate, then the
-/// QP's posture block of P: BFGS part + the discomfort's exact diagonal + damping.
+/// QP's posture block of P: BFGS part + the discomfort's exact diagonal + damping. The gradient
+/// change is the Lagrangian's with the last QP's multipliers at both iterates, each clearance
+/// multiplier on the row of its own contact ([`match_clearance_duals`]): with a multiplier left
+/// on a row that holds another contact now, the pair saw curvature of the wrong sign and the
+/// damping stalled the solves (pallet's lift ended at the iteration limit).
 fn update_curvature(work: &mut SqpWork, q: &[f64]) {
     let n = work.qp.sizes.n;
     if work.have_last {
@@ -856,12 +965,39 @@ fn update_curvature(work: &mut SqpWork, q: &[f64]) {
 }
 
 /// Remembers the iterate, its Lagrangian gradient and the duals for the next BFGS update.
-fn remember_iterate(work: &mut SqpWork, q: &[f64]) {
+fn remember_iterate(work: &mut SqpWork, contacts: &[Contact], q: &[f64]) {
     lagrangian_gradient(work, false);
     work.last_q.copy_from_slice(q);
     work.last_grad_l.copy_from_slice(&work.grad_l);
     work.last_z.copy_from_slice(&work.qp.z);
+    work.last_contacts.clear();
+    work.last_contacts
+        .extend(contacts.iter().map(|c| (c.link, c.other.id())));
     work.have_last = true;
+}
+
+/// The last iterate's clearance multipliers moved to the rows of the same contacts at the new
+/// iterate (the rows hold the closest contacts in order of distance, so a row may hold another
+/// contact there): the BFGS pair must difference the Lagrangian of the same constraints. A
+/// contact new at this iterate gets no multiplier.
+fn match_clearance_duals(work: &mut SqpWork, contacts: &[Contact]) {
+    if !work.have_last {
+        return;
+    }
+    let r = work.qp.rows.clearance;
+    let k = work.qp.sizes.k;
+    work.z_scratch[..k].copy_from_slice(&work.last_z[r..r + k]);
+    for slot in 0..k {
+        let z = contacts
+            .get(slot)
+            .and_then(|c| {
+                work.last_contacts
+                    .iter()
+                    .position(|&id| id == (c.link, c.other.id()))
+            })
+            .map_or(0.0, |i| work.z_scratch[i]);
+        work.last_z[r + slot] = z;
+    }
 }
 
 /// Raises the equality rows' penalty to twice the largest equality multiplier of the QP just
@@ -970,17 +1106,22 @@ pub fn solve_phase(
     // a local solve is a function of its problem and start alone
     work.qp.forget_solver();
     let mut m0 = merit(task, scene, pw, work, prob, q);
-    start_curvature(task, scene, pw, work, prob, q);
     work.reset_once = false;
+    let mut first = true;
     loop {
         build_qp(task, scene, pw, work, prob, q);
+        if first {
+            start_curvature(task, scene, pw, work, prob, q);
+            first = false;
+        }
+        match_clearance_duals(work, &pw.contacts);
         update_curvature(work, q);
         out.qp_solves += 1;
         if !work.qp.solve()? {
             out.stop = Stop::QpFailed;
             break;
         }
-        remember_iterate(work, q);
+        remember_iterate(work, &pw.contacts, q);
         raise_penalty(work, &mut m0);
         current_point(task, scene, pw, work, &m0);
         let (stat, comp) = kkt(work);
@@ -1184,4 +1325,199 @@ pub fn restore(
     let _ = worst;
     q.copy_from_slice(&best.1);
     best.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fatigue::MaState;
+    use crate::plan::objective::FatigueCost;
+    use crate::plan::posture::Other;
+    use crate::plan::search::PhaseSolver;
+    use crate::plan::stepping::feet_of;
+
+    /// The Jacobian of [`posture_terms`]' posture gradient by central differences, the statics
+    /// and the load cost evaluated afresh at every moved posture, less the discomfort's diagonal:
+    /// what [`explicit_curvature`] must give.
+    fn by_differences(
+        task: &Task,
+        scene: &Scene,
+        pw: &mut PostureWork,
+        work: &mut SqpWork,
+        prob: &mut PhaseProblem,
+        q: &[f64],
+    ) -> Vec<f64> {
+        let n = task.model.nq();
+        let step = 1e-6;
+        let mut out = vec![0.0; n * n];
+        let mut qf = q.to_vec();
+        for k in 0..n {
+            let mut g = [vec![0.0; n], vec![0.0; n]];
+            for (side, x) in [q[k] - step, q[k] + step].into_iter().enumerate() {
+                qf[k] = x;
+                pw.statics(task, &qf, &prob.hand_force_n);
+                posture_terms(task, scene, pw, work, prob, &qf);
+                g[side].copy_from_slice(&work.dq_grad);
+            }
+            qf[k] = q[k];
+            for i in 0..n {
+                out[i * n + k] = (g[1][i] - g[0][i]) / (2.0 * step);
+            }
+        }
+        pw.statics(task, q, &prob.hand_force_n);
+        posture_terms(task, scene, pw, work, prob, q);
+        for k in 0..n {
+            out[k * n + k] -= work.dq_curv[k];
+        }
+        out
+    }
+
+    /// The BFGS pair differences the Lagrangian of the same constraints: a clearance row's
+    /// multiplier follows its contact when the rows' order of distance changes, and a contact
+    /// new at this iterate gets none.
+    #[test]
+    fn clearance_multipliers_follow_their_contacts() {
+        let path = format!("{}/tasks/shelf.yaml", env!("CARGO_MANIFEST_DIR"));
+        let task = Task::from_file(&path).unwrap();
+        let mut solver = PhaseSolver::new(&task, SqpSettings::default()).unwrap();
+        let work = &mut solver.work;
+        let contact = |link: usize, other: Other, distance_m: f64| Contact {
+            distance_m,
+            link,
+            point_m: Vector3::zeros(),
+            normal: Vector3::z(),
+            other,
+        };
+        let before = [
+            contact(3, Other::Obstacle(0), 0.010),
+            contact(5, Other::HeldObject, 0.012),
+            contact(
+                7,
+                Other::Body {
+                    link: 2,
+                    point_m: Vector3::zeros(),
+                },
+                0.020,
+            ),
+        ];
+        let r = work.qp.rows.clearance;
+        work.qp.z.iter_mut().for_each(|z| *z = 0.0);
+        for (i, z) in [0.5, 0.25, 0.125].into_iter().enumerate() {
+            work.qp.z[r + i] = z;
+        }
+        remember_iterate(work, &before, &vec![0.0; task.model.nq()]);
+        // the held object is now closest, the obstacle second, the self-contact gone (its
+        // witness point moved: the same contact), and a new obstacle third
+        let after = [
+            contact(5, Other::HeldObject, 0.009),
+            contact(3, Other::Obstacle(0), 0.011),
+            contact(
+                7,
+                Other::Body {
+                    link: 2,
+                    point_m: Vector3::x(),
+                },
+                0.015,
+            ),
+            contact(3, Other::Obstacle(1), 0.030),
+        ];
+        match_clearance_duals(work, &after);
+        assert_eq!(&work.last_z[r..r + 5], &[0.25, 0.5, 0.125, 0.0, 0.0]);
+    }
+
+    /// The analytic start curvature against central differences of the gradient it
+    /// differentiates, at postures where the strength curves are off their plateaus (trunk
+    /// flexed, shoulder raised, elbow and knees bent) and the fatigue cost's curvature is large:
+    /// on the shelf task (fixed feet) and on the side transfer with a step cost to another
+    /// stance (placed feet). Every entry within 1e-4 of the matrix's largest.
+    #[test]
+    fn the_start_curvature_is_the_derivative_of_the_explicit_gradient() {
+        for (file, steps) in [("shelf.yaml", false), ("side_transfer.yaml", true)] {
+            let path = format!("{}/tasks/{file}", env!("CARGO_MANIFEST_DIR"));
+            let task = Task::from_file(&path).unwrap();
+            let mut solver = PhaseSolver::new(&task, SqpSettings::default()).unwrap();
+            let (n, nh) = (task.model.nq(), task.half_joints.len());
+            let mut q = vec![0.0; n];
+            for (name, v) in [
+                ("lumbar_flexion", 0.45),
+                ("r_shoulder_flexion", 1.1),
+                ("r_elbow_flexion", 0.7),
+                ("l_shoulder_flexion", 0.5),
+                ("r_knee_flexion", 0.3),
+                ("l_knee_flexion", 0.2),
+                ("lumbar_axial_rotation", 0.15),
+            ] {
+                if let Ok(k) = task.model.q_index(name) {
+                    q[k] = v;
+                }
+            }
+            let phase = &task.phases[0];
+            solver.pw.statics(&task, &q, &phase.hand_force_n);
+            let mut f = vec![0.0; nh];
+            solver.pw.half_joint_loads(&task, &q, &mut f);
+            let stepping = if steps {
+                let mut other = q.clone();
+                let kr = task.model.q_index("pelvis_rotation").unwrap();
+                other[kr] += 0.4;
+                solver.pw.statics(&task, &other, &phase.hand_force_n);
+                let feet = feet_of(&task, &solver.pw).unwrap();
+                Stepping {
+                    weight: 1.0,
+                    neighbours: vec![(feet, 2.0)],
+                    ..Stepping::default()
+                }
+            } else {
+                Stepping::default()
+            };
+            // the phase holds twice its loads at q, so that its fatigue is well under way
+            let loads: Vec<f64> = f.iter().map(|x| 2.0 * x).collect();
+            let phase_loads = vec![loads.clone(); task.phases.len()];
+            let mut cost = FatigueCost::new(
+                &task,
+                &[0],
+                &phase_loads,
+                &f,
+                &vec![MaState::FRESH; nh],
+                task.cycles as u64,
+            );
+            let big = vec![10.0; nh];
+            let discomfort = solver.discomfort.clone();
+            let mut prob = PhaseProblem {
+                targets_m: phase.targets_m,
+                hand_force_n: phase.hand_force_n,
+                cost: &mut cost,
+                discomfort: &discomfort,
+                discomfort_weight: 1.0,
+                shape: Shape::of(&task),
+                capacity: &big,
+                gaze_m: None,
+                stepping: &stepping,
+                zones: None,
+                held: None,
+            };
+            let (scene, pw, work) = (&solver.scene, &mut solver.pw, &mut solver.work);
+            build_qp(&task, scene, pw, work, &mut prob, &q);
+            explicit_curvature(&task, scene, pw, work, &mut prob, &q);
+            let analytic = work.hess.clone();
+            let fd = by_differences(&task, scene, pw, work, &mut prob, &q);
+            let largest = fd.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert!(largest > 1e-2, "{file}: nothing to compare ({largest})");
+            // the strength's cross terms are there: entries off the diagonal
+            let off = (0..n * n)
+                .filter(|&e| e / n != e % n && fd[e].abs() > 1e-3 * largest)
+                .count();
+            assert!(off > 10, "{file}: {off} off-diagonal entries");
+            for i in 0..n {
+                for k in 0..n {
+                    let (a, d) = (analytic[i * n + k], fd[i * n + k]);
+                    assert!(
+                        (a - d).abs() <= 1e-4 * largest,
+                        "{file}: ∂g/∂q ({}, {}) {a} vs differences {d} (largest {largest})",
+                        task.model.q_joint(i).name,
+                        task.model.q_joint(k).name
+                    );
+                }
+            }
+        }
+    }
 }
