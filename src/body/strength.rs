@@ -461,19 +461,15 @@ impl HalfJoint {
     /// ∂MVC/∂q as (q index, value) pairs at `q_rad`, one pair per index.
     pub fn mvc_gradient(&self, q_rad: &[f64], out: &mut Vec<(usize, f64)>) {
         out.clear();
-        let vals: Vec<(f64, f64)> = self
-            .posture
-            .iter()
-            .map(|p| p.curve.eval(p.angle(q_rad)))
-            .collect();
         for (k, p) in self.posture.iter().enumerate() {
-            let others: f64 = vals
+            let others: f64 = self
+                .posture
                 .iter()
                 .enumerate()
                 .filter(|(j, _)| *j != k)
-                .map(|(_, v)| v.0)
+                .map(|(_, o)| o.curve.eval(o.angle(q_rad)).0)
                 .product();
-            let d = self.mvc_nm * vals[k].1 * others;
+            let d = self.mvc_nm * p.curve.eval(p.angle(q_rad)).1 * others;
             for &i in &p.q_indices {
                 match out.iter_mut().find(|(j, _)| *j == i) {
                     Some((_, v)) => *v += d,
