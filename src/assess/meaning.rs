@@ -82,7 +82,7 @@ pub fn last_cycle_loads(task: &Task, plan: &Plan) -> Vec<Vec<f64>> {
 
 /// A time to exhaustion in the unit a reader would say it in: seconds below 2 min (a group out
 /// after 43 s is not "after 1 min"), minutes below 2 h, hours beyond.
-fn time_words(t_s: f64) -> String {
+pub fn time_words(t_s: f64) -> String {
     if t_s < 120.0 {
         format!("{t_s:.0} s")
     } else if t_s < 7200.0 {

@@ -19,6 +19,7 @@
 //!
 //! The comparison gives the zones' summed excess first.
 
+use crate::assess::meaning::time_words as duration;
 use crate::assess::{Assessment, assess};
 use crate::plan::{Plan, PlanError, PlanOptions, Task, plan_task_with};
 use nalgebra::Vector3;
@@ -53,7 +54,10 @@ pub struct Figures {
     pub lowest_capacity: f64,
     pub back_compression_max_n: Option<f64>,
     pub capable_women: f64,
-    pub exhausted: bool,
+    /// When a muscle group gives out \[s from the start of the task\]; `None` when none does.
+    /// A plan stops there, so its figures per hour and its lowest capacity are of that
+    /// shortened run.
+    pub exhaustion_s: Option<f64>,
     /// Steps per cycle (the phases' steps from the state before each).
     pub steps_per_cycle: u32,
     /// The postures' excess beyond ISO 11226 / EN 1005-4's acceptable zones, summed over the
@@ -76,16 +80,27 @@ pub fn relative_change(a: f64, b: f64) -> String {
 }
 
 impl Figures {
+    /// Whether a muscle group gives out within the task.
+    pub fn exhausted(&self) -> bool {
+        self.exhaustion_s.is_some()
+    }
+
     /// What changes from these figures to `after`, in words, one item per figure.
     pub fn changes_to(&self, after: &Figures) -> Vec<String> {
         let mut v = Vec::new();
         // a plan that gives out stops there: its figures per hour and its lowest capacity are of
-        // that shortened run, so whether a group gives out is said first
-        if self.exhausted && !after.exhausted {
-            v.push(
+        // that shortened run, so whether and when a group gives out is said first
+        match (self.exhaustion_s, after.exhaustion_s) {
+            (Some(_), None) => v.push(
                 "whether a muscle group gives out: yes → no (as planned one does and the plan stops there: its figures after this are of that shortened run)"
                     .into(),
-            );
+            ),
+            (Some(a), Some(b)) => v.push(format!(
+                "when a muscle group gives out: after {} → after {} (one gives out in both plans, and each stops there: the figures after this are of two shortened runs of different lengths, not comparable as rates)",
+                duration(a),
+                duration(b)
+            )),
+            _ => {}
         }
         if self.zone_excess_deg > 0.0 || after.zone_excess_deg > 0.0 {
             v.push(format!(
@@ -118,8 +133,11 @@ impl Figures {
                 self.steps_per_cycle, after.steps_per_cycle
             ));
         }
-        if after.exhausted && !self.exhausted {
-            v.push("but a muscle group is then exhausted within the task".into());
+        if let (None, Some(b)) = (self.exhaustion_s, after.exhaustion_s) {
+            v.push(format!(
+                "but a muscle group then gives out within the task, after {}",
+                duration(b)
+            ));
         }
         v
     }
@@ -161,21 +179,23 @@ impl WhatIf {
     /// Whether the change keeps every muscle group from giving out where the plan has one give
     /// out within the task.
     pub fn ends_exhaustion(&self) -> bool {
-        self.before.exhausted && !self.after.exhausted
+        self.before.exhausted() && !self.after.exhausted()
     }
 
     /// Whether the report's verdict recommends the change: it can be done as planned, every
-    /// phase of its plan converged, and either it ends an exhaustion ([`Self::ends_exhaustion`],
-    /// whatever fatigue per hour does: a plan that gives out stops early, so its figure per
-    /// hour is not comparable) or it exhausts no group the plan did not and lowers fatigue per
-    /// hour by at least [`ADVISE_FRACTION`].
+    /// phase of its plan converged, no group gives out after it, and either it ends an
+    /// exhaustion ([`Self::ends_exhaustion`], whatever fatigue per hour does: a plan that gives
+    /// out stops early, so its figure per hour is not comparable) or it lowers fatigue per hour
+    /// by at least [`ADVISE_FRACTION`]. A change after which a group still gives out is not
+    /// advised, however much later: the job stays one the worker cannot keep up, and the rates
+    /// of two runs cut short at different times do not compare.
     pub fn advised(&self) -> bool {
         let lowers = self.before.u_per_hour_min > 0.0
             && self.after.u_per_hour_min <= (1.0 - ADVISE_FRACTION) * self.before.u_per_hour_min;
         self.problems.is_empty()
             && self.not_converged.is_empty()
-            && (self.ends_exhaustion()
-                || ((!self.after.exhausted || self.before.exhausted) && lowers))
+            && !self.after.exhausted()
+            && (self.ends_exhaustion() || lowers)
     }
 }
 
@@ -205,7 +225,7 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
         lowest_capacity: s.lowest_capacity,
         back_compression_max_n: a.back_compression_max_n,
         capable_women: a.capable_women,
-        exhausted: s.exhaustion.is_some(),
+        exhaustion_s: s.exhaustion.as_ref().map(|e| e.t_s),
         steps_per_cycle: s
             .phases
             .iter()
@@ -391,12 +411,20 @@ pub fn what_ifs(
 }
 
 /// Orders what-ifs for the report: those that can be done as planned first, then those after
-/// which no group gives out, then by fatigue per hour after the change, lowest first.
+/// which no group gives out, then by fatigue per hour after the change, lowest first (where a
+/// group gives out after each, by when it does, latest first).
 fn rank(v: &mut [WhatIf]) {
     v.sort_by(|x, y| {
         (!x.problems.is_empty())
             .cmp(&!y.problems.is_empty())
-            .then(x.after.exhausted.cmp(&y.after.exhausted))
+            .then(x.after.exhausted().cmp(&y.after.exhausted()))
+            // after both a group gives out: the later the better (their rates do not compare)
+            .then(
+                y.after
+                    .exhaustion_s
+                    .unwrap_or(0.0)
+                    .total_cmp(&x.after.exhaustion_s.unwrap_or(0.0)),
+            )
             .then(x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min))
     });
 }
@@ -411,7 +439,7 @@ mod tests {
             lowest_capacity: 0.5,
             back_compression_max_n: None,
             capable_women: 0.5,
-            exhausted: false,
+            exhaustion_s: None,
             steps_per_cycle: 0,
             zone_excess_deg: 0.0,
         }
@@ -441,25 +469,30 @@ mod tests {
     #[test]
     fn doable_changes_first_then_no_exhaustion_then_the_least_fatigue() {
         let mut exhausting = what_if(0.4, 40.0, false);
-        exhausting.after.exhausted = true;
+        exhausting.after.exhaustion_s = Some(60.0);
+        // gives out later, at a higher rate over its longer run: ranked before
+        let mut later = what_if(0.45, 45.0, false);
+        later.after.exhaustion_s = Some(90.0);
         let mut v = vec![
             what_if(0.1, 50.0, true),
             exhausting,
             what_if(0.2, 90.0, false),
+            later,
             what_if(0.3, 60.0, false),
         ];
         rank(&mut v);
         let order: Vec<f64> = v.iter().map(|w| w.after.u_per_hour_min).collect();
-        assert_eq!(order, [60.0, 90.0, 40.0, 50.0]);
+        assert_eq!(order, [60.0, 90.0, 45.0, 40.0, 50.0]);
     }
 
     /// A change after which no group gives out, where the plan has one give out, says so before
     /// the figures per hour (those of the plan that gives out are of a shortened run); the other
-    /// way round it says so after them; neither when both or none give out.
+    /// way round it says so after them, with when; where a group gives out in both, when it does
+    /// in each comes first, and the rates are said not to compare; nothing when none gives out.
     #[test]
     fn ending_an_exhaustion_is_said_first() {
         let (mut before, after) = (figures(130.0), figures(120.0));
-        before.exhausted = true;
+        before.exhaustion_s = Some(63.0);
         let v = before.changes_to(&after);
         assert!(
             v[0].starts_with("whether a muscle group gives out: yes → no"),
@@ -467,10 +500,21 @@ mod tests {
         );
         let v = after.changes_to(&before);
         assert!(
-            v.last().unwrap().contains("exhausted within the task"),
+            v.last()
+                .unwrap()
+                .contains("gives out within the task, after 63 s"),
             "{v:?}"
         );
         assert!(!v.iter().any(|s| s.contains("yes → no")));
+        let mut later = figures(143.4);
+        later.exhaustion_s = Some(300.0);
+        let v = before.changes_to(&later);
+        assert!(
+            v[0].starts_with("when a muscle group gives out: after 63 s → after 5 min")
+                && v[0].contains("not comparable as rates"),
+            "{v:?}"
+        );
+        assert_eq!(v.iter().filter(|s| s.contains("gives out")).count(), 1);
         let v = figures(130.0).changes_to(&figures(120.0));
         assert!(
             !v.iter()
@@ -500,14 +544,16 @@ mod tests {
         w.not_converged = vec!["lift".into()];
         assert!(!w.advised());
         let mut w = what_if(0.6, 60.0, false);
-        w.after.exhausted = true;
+        w.after.exhaustion_s = Some(100.0);
         assert!(!w.advised());
-        w.before.exhausted = true;
-        assert!(w.advised());
+        // a group gives out both before and after: not advised, however much lower the rate
+        // over the shortened runs or later the exhaustion
+        w.before.exhaustion_s = Some(50.0);
+        assert!(!w.advised());
         // a change that ends an exhaustion is advised even when fatigue per hour rises (the
         // plan that gives out stops early); unless it collides or did not finish
         let mut w = what_if(0.7, 130.0, false);
-        w.before.exhausted = true;
+        w.before.exhaustion_s = Some(63.0);
         assert!(w.ends_exhaustion() && w.advised());
         w.not_converged = vec!["lift".into()];
         assert!(!w.advised());
