@@ -1,11 +1,12 @@
 //! Layout comparison: the same work planned on several workstation layouts, side by side and
 //! ranked, with the ranking's robustness across the fatigue parameters' ranges.
 //!
-//! **Ranking** (best first, [`RANKING_RULE`]): a layout the worker can do (every target reached,
-//! no collision, balance kept) beats one they cannot; then no load above a group's strength;
-//! then no exhaustion within the task (among exhausted layouts, later is better); then the longer
-//! time to exhaustion at the task's pace; then the higher lowest capacity at any time; then the
-//! lower fatigue index per hour of simulated work; then the lower worst RULA.
+//! **Ranking** (best first, [`RANKING_RULE`]): what decides a layout for an ergonomist first —
+//! whether the worker can do it (every target reached, no collision, balance kept), no load above
+//! a group's strength, no exhaustion within the task, NIOSH's lifting index where lifts are
+//! declared, postures within ISO 11226 / EN 1005-4, L5/S1 compression against NIOSH's limits, the
+//! share strong enough, the shift verdict — and only then the fatigue model's finer figures
+//! (time to exhaustion, lowest capacity, fatigue per hour) and the worst RULA.
 //!
 //! **Robustness**: every layout's plan is replayed under the nine parameter variants of
 //! [`crate::assess::uncertainty`]; the ranking is redone per variant and the best layout's wins
