@@ -7,9 +7,11 @@
 //! handling. The phase: the one with the highest L5/S1 compression when a phase exceeds NIOSH's
 //! action limit, else the one whose posture the targets force farthest beyond the acceptable
 //! zones (ISO 11226 / EN 1005-4, summed excess), else the one where the group whose capacity
-//! falls lowest holds its highest load. The move: toward standing elbow height (0.630 ×
-//! stature, Drillis & Contini 1966), by at most [`MAX_MOVE_M`]; no such what-if when the target
-//! is already within [`NEAR_ELBOW_M`] of it.
+//! falls lowest holds its highest load. The move: toward elbow height, by at most
+//! [`MAX_MOVE_M`]; no such what-if when the target is already within [`NEAR_ELBOW_M`] of it. A
+//! standing worker's elbow height is 0.630 × stature (Drillis & Contini 1966); a seated
+//! worker's is where the plan's seated rest posture (upper arms hanging) puts the elbow — the
+//! seat's height plus the worker's sitting elbow height, which no fraction of stature gives.
 //!
 //! **The worker free to step.** When the task fixes the feet of a standing worker, the task
 //! planned again with the feet placed by the planner within a standing area around the task's
@@ -153,6 +155,8 @@ pub enum Change {
         /// Vertical move of the phase's hand targets (and held object) \[m\], + up.
         dz_m: f64,
         elbow_height_m: f64,
+        /// The worker sits: the elbow height is the seated one.
+        seated: bool,
     },
     /// The feet, fixed in the task, placed by the planner within a square standing area
     /// centred on the task's stance.
@@ -308,7 +312,11 @@ pub fn what_if(
         return Ok(None);
     }
     let z = heights.iter().sum::<f64>() / heights.len() as f64;
-    let elbow = ELBOW_HEIGHT_PER_STATURE * task.worker.stature_m;
+    let seated = task.stance.as_ref().is_some_and(|s| s.seat.is_some());
+    let elbow = match seated_elbow_height_m(task, plan) {
+        Some(z) if seated => z,
+        _ => ELBOW_HEIGHT_PER_STATURE * task.worker.stature_m,
+    };
     if (elbow - z).abs() < NEAR_ELBOW_M {
         return Ok(None);
     }
@@ -329,8 +337,24 @@ pub fn what_if(
         phase: ph.name.clone(),
         dz_m: dz,
         elbow_height_m: elbow,
+        seated,
     };
     plan_changed(change, &changed, plan, a, opts, floor).map(Some)
+}
+
+/// The height of the right elbow (the origin of the link `r_forearm`) in the plan's rest posture
+/// \[m\]: for a seated worker, the seated elbow height with the upper arms hanging. `None`
+/// for a body without that link.
+pub fn seated_elbow_height_m(task: &Task, plan: &Plan) -> Option<f64> {
+    let m = &task.model;
+    let link = m.links.iter().position(|l| l.name == "r_forearm")?;
+    let q = &plan.summary.rest_posture_rad;
+    if q.len() != m.nq() {
+        return None;
+    }
+    let mut data = crate::body::StaticsData::new(m, 0);
+    crate::body::forward_kinematics(m, &mut data, q);
+    Some(data.link_point(m, link, &Vector3::zeros()).z)
 }
 
 /// Plans the changed task with `opts` (without baselines) and compares it with `plan`.
@@ -451,6 +475,7 @@ mod tests {
                 phase: format!("{dz_m}"),
                 dz_m,
                 elbow_height_m: 1.1,
+                seated: false,
             },
             before: figures(100.0),
             after: figures(after_u),

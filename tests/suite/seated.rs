@@ -237,3 +237,55 @@ fn seated_postures_score_supported_legs_and_no_knee_adjustment() {
         assert!(!words.contains("knees bent"), "{words}");
     }
 }
+
+/// The "what would change it" finding moves a seated worker's work toward the seated elbow height
+/// (where the seated rest posture, upper arms hanging, puts the elbow), not the standing one
+/// (0.630 × stature would put it 0.3 m higher, at the seated worker's shoulder). For the seated
+/// 1.62 m woman the elbow joint's centre hangs one upper-arm length below the shoulder's and sits
+/// 0.185–0.33 m above the seat: sitting elbow heights run from 185 mm (5th-percentile woman) to
+/// 295 mm (95th-percentile man) for British adults (Pheasant & Haslegrave, Bodyspace, 3rd ed.,
+/// 2006), measured to the underside of the elbow, which lies below the joint's centre by about
+/// the olecranon's depth (ASSUMPTION: up to 35 mm).
+#[test]
+fn a_seated_workers_work_moves_toward_the_seated_elbow_height() {
+    let (t, p) = planned();
+    let m = &t.model;
+    let seat_m = t.stance.as_ref().unwrap().seat.as_ref().unwrap().height_m;
+    let z = posture_opt::study::what_if::seated_elbow_height_m(t, p).unwrap();
+    assert!(
+        (0.185..=0.33).contains(&(z - seat_m)),
+        "{z} m, seat {seat_m} m"
+    );
+    let mut d = posture_opt::body::StaticsData::new(m, 0);
+    let at = |d: &mut posture_opt::body::StaticsData, q: &[f64], name: &str| {
+        posture_opt::body::forward_kinematics(m, d, q);
+        let l = m.links.iter().position(|x| x.name == name).unwrap();
+        d.link_point(m, l, &Vector3::zeros())
+    };
+    let q = &p.summary.rest_posture_rad;
+    let upper_arm_m = (at(&mut d, q, "r_upper_arm") - at(&mut d, q, "r_forearm")).norm();
+    let hang_m = at(&mut d, q, "r_upper_arm").z - z;
+    assert!(
+        (hang_m - upper_arm_m).abs() < 0.01,
+        "{hang_m} vs {upper_arm_m}"
+    );
+    let a = posture_opt::assess::assess(t, p, 0.7);
+    let w = posture_opt::study::what_if::what_if(t, p, &a, crate::common::held(false), 0.7)
+        .unwrap()
+        .expect("the bench's work sits 0.15-0.3 m above the seated elbow: it is moved");
+    let posture_opt::study::what_if::Change::MoveWork {
+        dz_m,
+        elbow_height_m,
+        seated,
+        ..
+    } = w.change
+    else {
+        panic!("{:?}", w.change)
+    };
+    assert!(seated);
+    assert_eq!(elbow_height_m, z);
+    assert!(
+        dz_m < 0.0,
+        "the work moves down toward the seated elbow: {dz_m}"
+    );
+}

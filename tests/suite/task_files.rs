@@ -771,11 +771,13 @@ fn what_if_moves_the_work_toward_elbow_height_and_replans() {
         phase,
         dz_m,
         elbow_height_m,
+        seated,
     } = &w.change
     else {
         panic!("{:?}", w.change)
     };
     assert_eq!(phase, "hold");
+    assert!(!seated);
     assert!((elbow_height_m - 0.630 * 1.755).abs() < 1e-12);
     assert!((dz_m - 0.10).abs() < 1e-12, "{dz_m}");
     // the same change by hand (0.70 + 0.10 is not 0.80 in binary: the two plans agree to the

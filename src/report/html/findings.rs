@@ -744,11 +744,13 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
             phase,
             dz_m,
             elbow_height_m,
+            seated,
         } => format!(
-            "placing the work of {} {} {}, toward this worker’s elbow height ({})",
+            "placing the work of {} {} {}, toward this worker’s {}elbow height ({})",
             q(phase),
             mm(dz_m.abs()),
             if *dz_m > 0.0 { "up" } else { "down" },
+            if *seated { "seated " } else { "" },
             super::fmt::unit(*elbow_height_m, 2, "m")
         ),
         Change::StandingArea { half_side_m } => format!(
