@@ -847,7 +847,8 @@ fn what_if_lets_the_worker_step_within_a_metre_square_and_replans() {
     let start = html.find("<div class=\"verdict").unwrap();
     let verdict = &html[start..start + html[start..].find("</div>").unwrap()];
     assert_eq!(
-        verdict.contains("Letting the worker step and turn within 1.0 m × 1.0 m of floor"),
+        verdict
+            .contains("Letting the worker step and turn within 1.0\u{a0}m × 1.0\u{a0}m of floor"),
         w.advised(),
         "{verdict}\n{w:?}"
     );
