@@ -48,6 +48,18 @@ pub struct Assessment {
     pub uncertainty: Option<uncertainty::Sensitivity>,
 }
 
+impl Assessment {
+    /// Whether Rohmert's rest allowance applies: some posture is held long enough to be static
+    /// (the verdict's Rohmert criterion is not "not applicable"). Every report words the
+    /// allowance from this.
+    pub fn rohmert_applies(&self) -> bool {
+        self.verdict
+            .criteria
+            .iter()
+            .any(|c| c.id == "rohmert" && c.status != verdict::Status::NotApplicable)
+    }
+}
+
 /// A share of the population (0..1) as a percentage rounded *down* to `dp` decimals, so a share
 /// just short of a design limit never reads as meeting it (0.9896 -> 98 at `dp` 0, never 99).
 /// The nudge of 1e-9 keeps binary fractions that are exactly representable in decimal (0.57, whose

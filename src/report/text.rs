@@ -304,11 +304,7 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
         }
     }
-    let rohmert_applies =
-        a.verdict.criteria.iter().any(|c| {
-            c.id == "rohmert" && c.status != crate::assess::verdict::Status::NotApplicable
-        });
-    o.push_str(&rest_summary(&a.rest, p, rohmert_applies));
+    o.push_str(&rest_summary(&a.rest, p, a.rohmert_applies()));
     if let Some(u) = &a.uncertainty {
         o.push_str(&sensitivity_table(u));
     }

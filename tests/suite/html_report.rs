@@ -701,3 +701,26 @@ fn sweep_report_of_a_task_has_its_phases_and_parameters() {
     let escaped = task.fatigue_choice.k_source.replace('&', "&amp;");
     assert!(html.contains(&escaped), "the k source");
 }
+
+/// The report's work-and-rest table words Rohmert's allowance as the verdict and the text report
+/// do: not applicable where no posture is held longer than ISO 11226's 4 s (the quick task's
+/// phases last 2–3 s); it used to print an allowance in seconds there while the verdict and the
+/// text said "not applicable".
+#[test]
+fn the_rohmert_row_agrees_with_the_verdict() {
+    let p = planned();
+    assert!(!p.assessment.rohmert_applies());
+    let html = plan_html();
+    let i = html.find("Rohmert (1973) rest allowance").unwrap();
+    let row = &html[i..i + html[i..].find("</tr>").unwrap()];
+    assert!(row.contains("not applicable"), "{row}");
+    let text = posture_opt::report::text::rest_summary(
+        &p.assessment.rest,
+        &p.plan,
+        p.assessment.rohmert_applies(),
+    );
+    assert!(
+        text.contains("Rohmert (1973) rest allowance: not applicable"),
+        "{text}"
+    );
+}

@@ -308,12 +308,13 @@ fn the_solvers_precision_does_not_decide_the_plan() {
         "overhead_drilling",
         "pallet",
         "pallet_raised",
+        "side_transfer",
         "bench_seated",
     ];
     // every task is checked and every miss reported (a panic would hide the tasks after it)
     let bad: Vec<String> = std::thread::scope(|s| {
         let handles: Vec<_> = names
-            .chunks(5)
+            .chunks(6)
             .map(|chunk| {
                 s.spawn(move || {
                     chunk

@@ -669,6 +669,12 @@ fn rest_section(plan: &Plan, a: &Assessment) -> String {
         ),
         (
             "Rohmert (1973) rest allowance",
+            if !a.rohmert_applies() {
+                format!(
+                    "not applicable (no posture is held longer than {:.0} s; the rule is for static holds)",
+                    crate::assess::verdict::ISO_STATIC_S
+                )
+            } else {
             format!(
                 "<b>{}</b> per cycle{}{}",
                 dur(r.rohmert.rest_s_per_cycle),
@@ -685,7 +691,8 @@ fn rest_section(plan: &Plan, a: &Assessment) -> String {
                         esc(&r.rohmert.over_mvc.iter().map(|h| group(plan, h)).collect::<Vec<_>>().join(", "))
                     )
                 }
-            ),
+            )
+            },
         ),
         (
             "which to use",
