@@ -241,6 +241,13 @@ pub fn meaning_with(task: &Task, plan: &Plan, params: &[MaParams]) -> Meaning {
             group(c_h),
             100.0 * c_left
         ),
+        // the lowest capacity within the task's last cycle: the capacities settle above the
+        // loads in the end, but are still falling when the task ends
+        None if task.duration_s() - replayed.lowest_t_s <= task.cycle_s() => format!(
+            "no muscle group gives out at this pace: every group's capacity would settle above its loads, but it is still falling when the task ends; at the end the {} keep {:.0} % of their strength",
+            group(c_h),
+            100.0 * c_left
+        ),
         None => format!(
             "no muscle group gives out at this pace: every group's capacity settles above its loads; at the end the {} keep {:.0} % of their strength",
             group(c_h),

@@ -456,6 +456,47 @@ pub struct PointResult {
     pub fi_lifting_index: Option<f64>,
 }
 
+impl Point {
+    /// "origin" or "destination".
+    pub fn words(self) -> &'static str {
+        match self {
+            Point::Origin => "origin",
+            Point::Destination => "destination",
+        }
+    }
+}
+
+impl PointResult {
+    /// Why the RWL is 0 at this end, one item per multiplier at 0, with the value that puts it
+    /// there: "H 66.5 cm beyond 63 cm (HM = 0)". Empty when the RWL is positive.
+    pub fn zero_reasons(&self) -> Vec<String> {
+        let m = &self.multipliers;
+        let mut v = Vec::new();
+        if m.hm == 0.0 {
+            v.push(format!("H {:.1} cm beyond 63 cm (HM = 0)", m.h_cm));
+        }
+        if m.vm == 0.0 {
+            v.push(format!("V {:.1} cm beyond 175 cm (VM = 0)", m.v_cm));
+        }
+        if m.dm == 0.0 {
+            v.push(format!("D {:.1} cm beyond 175 cm (DM = 0)", m.d_cm));
+        }
+        if m.am == 0.0 {
+            v.push(format!(
+                "asymmetry {:.0}° beyond 135° (AM = 0)",
+                m.asymmetry_deg
+            ));
+        }
+        if m.fm == 0.0 {
+            v.push("the frequency beyond Table 5 for this duration and height (FM = 0)".into());
+        }
+        if m.cm == 0.0 {
+            v.push("CM = 0".into());
+        }
+        v
+    }
+}
+
 /// Assessment of one lift (single-task procedure, p. 26, and the per-task quantities of the
 /// multi-task procedure, pp. 26–27).
 #[derive(Debug, Clone, PartialEq, Serialize)]

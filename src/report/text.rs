@@ -55,6 +55,44 @@ pub fn rest_summary(r: &RestAdvice, p: &Plan, rohmert_applies: bool) -> String {
     o
 }
 
+/// A NIOSH lift in words: its RWL and lifting index (or why the index is not defined: a
+/// multiplier at 0 puts the lift outside the equation's range), and with control at the
+/// destination each end's, the governing one named.
+pub fn lift_lines(r: &crate::assess::niosh::LiftResult) -> Vec<String> {
+    use crate::assess::niosh::{Point, PointResult};
+    let li = |x: Option<f64>, p: &PointResult| match x {
+        Some(x) => format!("lifting index {x:.2}"),
+        None => format!(
+            "lifting index not defined: {} — outside the equation's range, no load is recommended",
+            p.zero_reasons().join(", ")
+        ),
+    };
+    let governing = match (r.governing, &r.destination) {
+        (Point::Destination, Some(d)) => d,
+        _ => &r.origin,
+    };
+    let mut v = vec![format!(
+        "NIOSH lift '{}': RWL {:.1} kg, {}",
+        r.name,
+        r.rwl_kg,
+        li(r.lifting_index, governing)
+    )];
+    if let Some(d) = &r.destination {
+        for (p, x) in [(Point::Origin, &r.origin), (Point::Destination, d)] {
+            v.push(format!(
+                "  at the {} (H {:.1} cm, V {:.1} cm{}): RWL {:.1} kg, {}",
+                p.words(),
+                x.multipliers.h_cm,
+                x.multipliers.v_cm,
+                if p == r.governing { ", governs" } else { "" },
+                x.rwl_kg,
+                li(x.lifting_index, x)
+            ));
+        }
+    }
+    v
+}
+
 fn pct(x: f64) -> String {
     format!("{:.0} %", 100.0 * x)
 }
@@ -288,15 +326,9 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
     }
     if let Some(Ok(l)) = &a.lifting {
         for r in &l.lifts {
-            let _ = writeln!(
-                o,
-                "NIOSH lift '{}': RWL {:.1} kg, lifting index {}",
-                r.name,
-                r.rwl_kg,
-                r.lifting_index
-                    .map(|x| format!("{x:.2}"))
-                    .unwrap_or("-".into())
-            );
+            for line in lift_lines(r) {
+                let _ = writeln!(o, "{line}");
+            }
         }
         if let Some(c) = &l.composite
             && let Some(cli) = c.cli

@@ -773,3 +773,42 @@ cycles: 3000
         r.map(|l| l.lifts[0].duration)
     );
 }
+
+/// The report's words for a lift whose destination lies beyond NIOSH's 63 cm of horizontal
+/// reach (HM = 0, RWL = 0): the lifting index is "not defined" with the reason and the value
+/// (not a bare "-"), and with control at the destination both ends are given, the governing one
+/// named — the manual asks for both ends' multipliers (Waters et al. 1994, p. 11).
+#[test]
+fn a_lift_beyond_the_equations_range_says_why() {
+    let mut l = ideal();
+    l.origin = geometry(0.57, 0.88, 0.0);
+    l.destination = geometry(0.665, 1.525, 0.0);
+    l.control_at_destination = true;
+    let r = assess_lift(&l).unwrap();
+    assert_eq!(r.rwl_kg, 0.0);
+    assert_eq!(r.governing, Point::Destination);
+    let lines = posture_opt::report::text::lift_lines(&r);
+    assert!(
+        lines[0].contains("lifting index not defined: H 66.5 cm beyond 63 cm (HM = 0)"),
+        "{lines:?}"
+    );
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    let origin_li = r.origin.lifting_index.unwrap();
+    assert!(
+        lines[1].contains("at the origin")
+            && lines[1].contains(&format!("lifting index {origin_li:.2}")),
+        "{lines:?}"
+    );
+    assert!(
+        lines[2].contains("at the destination")
+            && lines[2].contains("governs")
+            && lines[2].contains("not defined"),
+        "{lines:?}"
+    );
+    // within range: a number, and one line without control at the destination
+    let lines = posture_opt::report::text::lift_lines(&assess_lift(&ideal()).unwrap());
+    assert_eq!(
+        lines,
+        ["NIOSH lift 'ideal': RWL 23.0 kg, lifting index 0.43"]
+    );
+}

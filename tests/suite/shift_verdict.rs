@@ -294,3 +294,43 @@ fn a_lift_beyond_the_equations_limits_is_exceeded_not_ignored() {
         a.verdict.headline
     );
 }
+
+/// The fatigue model's words say the capacities "settle above" the loads only where they have:
+/// where the lowest capacity falls within the task's last cycle (still falling when the task
+/// ends), they say so. A light hold at chest height (1 kg, 5 s of every 25 s) settles, but over
+/// three cycles it is still falling at the task's end; the overhead hold over 180 cycles: the
+/// words follow the replay either way.
+#[test]
+fn the_fatigue_words_say_settled_only_when_the_capacity_has() {
+    use posture_opt::assess::meaning::{meaning, replay_plan};
+    let short = task([0.30, -0.15, 1.20], 1.0, 5.0, 20.0, 3);
+    let p_short = plan_task_with(&short, held()).unwrap();
+    let (t, p) = overhead();
+    for (t, p, must_fall) in [(&short, &p_short, true), (t, p, false)] {
+        let m = meaning(t, p);
+        if m.exhaustion_verdict != "never" {
+            assert!(!must_fall, "{}", m.words);
+            continue;
+        }
+        let r = replay_plan(p, &t.fatigue);
+        let falling = t.duration_s() - r.lowest_t_s <= t.cycle_s();
+        assert!(
+            !must_fall || falling,
+            "{} s of {}",
+            r.lowest_t_s,
+            t.duration_s()
+        );
+        assert_eq!(
+            m.words.contains("still falling when the task ends"),
+            falling,
+            "{}",
+            m.words
+        );
+        assert_eq!(
+            m.words.contains("settles above its loads"),
+            !falling,
+            "{}",
+            m.words
+        );
+    }
+}

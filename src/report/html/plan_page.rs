@@ -601,41 +601,80 @@ fn lifting_section(a: &Assessment) -> String {
                 "niosh",
                 &[
                     "lift",
+                    "end",
                     "load",
-                    "H origin",
-                    "V origin",
+                    "H",
+                    "V",
                     "D",
-                    "A origin",
+                    "A",
                     "frequency",
                     "RWL",
                     "lifting index",
                 ],
             )
-            .numeric(&[1, 2, 3, 4, 5, 6, 7, 8]);
+            .numeric(&[2, 3, 4, 5, 6, 7, 8, 9]);
+            let mut undefined = Vec::new();
             for r in &l.lifts {
-                let m = &r.origin.multipliers;
-                let level = match r.lifting_index {
-                    Some(x) if x > 3.0 => Level::Bad,
-                    Some(x) if x > 1.0 => Level::Warn,
-                    Some(_) => Level::Ok,
-                    None => Level::Bad,
+                use crate::assess::niosh::Point;
+                // each end with control at the destination (the governing one marked), else
+                // the origin alone
+                let ends: Vec<(Point, &crate::assess::niosh::PointResult)> = match &r.destination {
+                    Some(d) => vec![(Point::Origin, &r.origin), (Point::Destination, d)],
+                    None => vec![(Point::Origin, &r.origin)],
                 };
-                t.row(
-                    Some(level),
-                    vec![
-                        esc(&r.name),
-                        unit(r.load_kg, 1, "kg"),
-                        unit(m.h_cm, 0, "cm"),
-                        unit(m.v_cm, 0, "cm"),
-                        unit(m.d_cm, 0, "cm"),
-                        unit(m.asymmetry_deg, 0, "°"),
-                        unit(r.freq_per_min, 2, "/min"),
-                        unit(r.rwl_kg, 1, "kg"),
-                        opt(r.lifting_index, |x| format!("<b>{}</b>", num(x, 2))),
-                    ],
-                );
+                let several = ends.len() > 1;
+                for (p, x) in ends {
+                    let m = &x.multipliers;
+                    let level = match x.lifting_index {
+                        Some(v) if v > 3.0 => Level::Bad,
+                        Some(v) if v > 1.0 => Level::Warn,
+                        Some(_) => Level::Ok,
+                        None => Level::Bad,
+                    };
+                    if x.lifting_index.is_none() {
+                        undefined.push(format!(
+                            "{} at the {}: {}",
+                            esc(&r.name),
+                            p.words(),
+                            esc(&x.zero_reasons().join(", "))
+                        ));
+                    }
+                    t.row(
+                        Some(level),
+                        vec![
+                            esc(&r.name),
+                            format!(
+                                "{}{}",
+                                p.words(),
+                                if several && p == r.governing {
+                                    " (governs)"
+                                } else {
+                                    ""
+                                }
+                            ),
+                            unit(r.load_kg, 1, "kg"),
+                            unit(m.h_cm, 0, "cm"),
+                            unit(m.v_cm, 0, "cm"),
+                            unit(m.d_cm, 0, "cm"),
+                            unit(m.asymmetry_deg, 0, "°"),
+                            unit(r.freq_per_min, 2, "/min"),
+                            unit(x.rwl_kg, 1, "kg"),
+                            match x.lifting_index {
+                                Some(v) => format!("<b>{}</b>", num(v, 2)),
+                                None => "<b>not defined</b>".into(),
+                            },
+                        ],
+                    );
+                }
             }
             o.push_str(&t.render());
+            if !undefined.is_empty() {
+                let _ = write!(
+                    o,
+                    "<p>Lifting index not defined (a multiplier is 0: the lift is outside the equation's range and no load is recommended; Waters et al. 1994): {}.</p>",
+                    undefined.join("; ")
+                );
+            }
             if let Some(c) = l.composite.as_ref().and_then(|c| c.cli) {
                 let _ = write!(o, "<p>Composite lifting index: <b>{}</b>.</p>", num(c, 2));
             }
