@@ -737,16 +737,33 @@ fn cell(s: &str) -> String {
 /// `" (did you mean 'x'?)"` when one of `candidates` is close to `word`, else "". The rule: the
 /// candidates of the highest normalised Damerau-Levenshtein similarity (at least 0.5, or a
 /// prefix either way) are suggested, all of them when several tie (`hand_grip` → `'l_hand_grip'
-/// or 'r_hand_grip'`, in the candidates' order; at most four).
+/// or 'r_hand_grip'`, in the candidates' order; at most four). A field written without its unit
+/// suffix is that field whatever else is close: `target` → `'target_m'` (not `'targets'`),
+/// `duration` → `'duration_s'`.
 pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> String {
     // a typo is short; comparing a long string costs O(n·m) for no useful hint
     if word.chars().count() > 64 {
         return String::new();
     }
-    let close: Vec<(f64, &str)> = candidates
-        .map(|c| (strsim::normalized_damerau_levenshtein(word, c), c))
-        .filter(|(s, c)| *s >= 0.5 || c.starts_with(word) || word.starts_with(c))
-        .collect();
+    let candidates: Vec<&str> = candidates.collect();
+    let with_unit = |c: &str| {
+        c.strip_prefix(word)
+            .and_then(|rest| rest.strip_prefix('_'))
+            .is_some_and(|unit| UNIT_SUFFIXES.contains(&unit))
+    };
+    let close: Vec<(f64, &str)> = if candidates.iter().any(|c| with_unit(c)) {
+        candidates
+            .into_iter()
+            .filter(|c| with_unit(c))
+            .map(|c| (1.0, c))
+            .collect()
+    } else {
+        candidates
+            .into_iter()
+            .map(|c| (strsim::normalized_damerau_levenshtein(word, c), c))
+            .filter(|(s, c)| *s >= 0.5 || c.starts_with(word) || word.starts_with(c))
+            .collect()
+    };
     let Some(best) = close.iter().map(|x| x.0).max_by(f64::total_cmp) else {
         return String::new();
     };
@@ -763,6 +780,11 @@ pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -
     let quoted: Vec<String> = names.iter().map(|n| format!("'{n}'")).collect();
     format!(" (did you mean {}?)", quoted.join(" or "))
 }
+
+/// The unit suffixes of the input files' field names (`duration_s`, `load_kg`, `q_rad`, …).
+const UNIT_SUFFIXES: &[&str] = &[
+    "m", "s", "kg", "n", "nm", "rad", "deg", "min", "w", "k", "mvc",
+];
 
 /// The accepted range of an integer type the YAML reader names ("invalid u32").
 fn integer_range(ty: &str) -> Option<(i128, i128)> {
@@ -914,6 +936,14 @@ mod tests {
         );
         let m = "unknown field `durations`, expected one of `name`, `target_m`, `duration_s`";
         assert!(explain_parse_error(m).ends_with("(did you mean 'duration_s'?)"));
+        // a field written without its unit is that field, although `targets` is closer by letters
+        // (found by an ergonomist writing `target: [x, y, z]` in a phase)
+        let m = "unknown field `target`, expected one of `name`, `target_m`, `hand`, `targets`";
+        assert!(
+            explain_parse_error(m).ends_with("(did you mean 'target_m'?)"),
+            "{}",
+            explain_parse_error(m)
+        );
     }
 
     #[test]

@@ -28,6 +28,64 @@ pub struct Lifting {
     pub composite: Option<CompositeResult>,
 }
 
+impl Lifting {
+    /// The lifting index that decides the task: the composite index (CLI) when several lifts
+    /// are declared, else the lift's LI. `Err` with the reason in words when a lift lies outside
+    /// the equation's limits (a multiplier of 0, so an RWL of 0: no load is recommended) —
+    /// "'table to shelf' at the destination: H 66.5 cm beyond 63 cm (HM = 0)" — or the lifts'
+    /// combination is (an FIRWL or FM of 0).
+    pub fn deciding_index(&self) -> Result<f64, String> {
+        for r in &self.lifts {
+            if r.lifting_index.is_none() {
+                let ends = std::iter::once((super::niosh::Point::Origin, &r.origin)).chain(
+                    r.destination
+                        .iter()
+                        .map(|d| (super::niosh::Point::Destination, d)),
+                );
+                let reasons: Vec<String> = ends
+                    .filter(|(_, x)| x.lifting_index.is_none())
+                    .map(|(p, x)| format!("at the {}: {}", p.words(), x.zero_reasons().join(", ")))
+                    .collect();
+                return Err(format!("'{}' {}", r.name, reasons.join("; ")));
+            }
+        }
+        match &self.composite {
+            Some(c) => c.cli.ok_or_else(|| {
+                "the lifts' composite index (a term's multiplier is 0 at their combined frequency)"
+                    .to_string()
+            }),
+            None => Ok(self
+                .lifts
+                .iter()
+                .filter_map(|r| r.lifting_index)
+                .fold(0.0, f64::max)),
+        }
+    }
+}
+
+/// A deciding index in words: "1.07", "not defined (outside the equation's limits)", or "none"
+/// (no lifts declared).
+pub fn index_words(index: Option<&Result<f64, String>>) -> String {
+    match index {
+        None => "none".into(),
+        Some(Ok(x)) => format!("{x:.2}"),
+        Some(Err(_)) => "not defined (outside the equation's limits)".into(),
+    }
+}
+
+/// The lifting index's risk class for ranking — 0: at most 1 (nearly all healthy workers), 1: at
+/// most 3 (an increased risk for some), 2: above 3 (many workers at elevated risk; Waters et al.
+/// 1994, Applications manual), 3: outside the equation's limits (no load is recommended) — and,
+/// above 1, the index itself (lower ranks better). `None` (no lifts declared) is class 0.
+pub fn risk_key(index: Option<&Result<f64, String>>) -> (u8, f64) {
+    match index {
+        Some(Err(_)) => (3, 0.0),
+        Some(Ok(x)) if *x > 3.0 => (2, *x),
+        Some(Ok(x)) if *x > 1.0 => (1, *x),
+        _ => (0, 0.0),
+    }
+}
+
 fn geometry(task: &Task, plan: &Plan, pw: &mut PostureWork, p: usize) -> Option<LiftGeometry> {
     let ph = &task.phases[p];
     let q = &plan.summary.phases[p].q_rad;

@@ -19,8 +19,11 @@
 //!    of its strength stands for its muscles' %MVC (Jonsson used EMG), and the legs' and trunk's
 //!    small static loads in standing, for which the limits were not derived, are not judged.
 //! 3. **ISO 11226:2000** (Ergonomics — evaluation of static working postures; EN 1005-4:2005
-//!    gives the same zones for static postures of the trunk and upper arm): for every phase
-//!    held longer than 4 s (the standards' static posture), trunk inclination 0–20° is
+//!    gives the same zones for static postures of the trunk and upper arm): each body segment on
+//!    its own, for every hold longer than 4 s (the standards' static posture) of the segment
+//!    beyond a zone's limit — consecutive phases in which it stays beyond that limit are one hold
+//!    of their total time, judged at their largest angle ([`segment_holds`]; the rest ends a
+//!    hold) — trunk inclination 0–20° is
 //!    acceptable, 20–60° only for its maximum acceptable holding time, beyond 60° or leaning
 //!    back not acceptable; trunk lateral bending or axial rotation beyond 10° not acceptable;
 //!    upper-arm elevation 0–20° acceptable, 20–60° only for its holding time, beyond 60° not
@@ -31,12 +34,12 @@
 //!    standard's figures as secondary sources reproduce them; the original figures were not
 //!    available to check here. Backward lean and head extension are judged beyond
 //!    [`ISO_BACKWARD_TOLERANCE_DEG`] (ASSUMPTION: less is not visible to an observer).
-//! 4. **EN 1005-4** (postures and movements in relation to machinery) for the phases held 4 s or
-//!    less (postures in movement): trunk lateral bending or axial rotation beyond 10°, or an
+//! 4. **EN 1005-4** (postures and movements in relation to machinery) for the segments' holds of
+//!    4 s or less (postures in movement): trunk lateral bending or axial rotation beyond 10°, or an
 //!    upper arm raised beyond 60° against the vertical, is not acceptable at 2 or more times a
 //!    minute and conditionally acceptable (a caution) less often; an upper arm raised 20–60° at 2
-//!    or more times a minute is conditionally acceptable. A phase's frequency is how often its
-//!    work (the same targets and load) comes round per minute. The zones are as secondary
+//!    or more times a minute is conditionally acceptable. A movement's frequency is how often a
+//!    cycle takes the segment beyond that limit, per minute. The zones are as secondary
 //!    summaries of the standard give them (the standard's text was not available here).
 //! 6. **NIOSH's low-back limits**: the highest L5/S1 compression within the action limit of
 //!    3400 N is acceptable, up to the maximum permissible limit of 6400 N a caution, above it
@@ -64,6 +67,7 @@ use super::meaning::{Meaning, last_cycle_loads};
 use super::niosh::{Adjustment, Point};
 use super::phase::PhaseAssessment;
 use super::rest::{RestAdvice, rohmert_allowance, rohmert_endurance_min};
+use crate::assess::angles::BodyAngles;
 use crate::plan::sqp::Stop;
 use crate::plan::{Plan, Task};
 use serde::Serialize;
@@ -539,81 +543,250 @@ fn phase_durations(task: &Task) -> Vec<f64> {
         .collect()
 }
 
+/// A body segment's posture beyond its neutral zone through consecutive phases of the cycle:
+/// ISO 11226 and EN 1005-4 judge each segment's posture on its own, so a head bowed through
+/// three short phases in a row is one static posture held their total time, although no phase
+/// alone lasts 4 s.
+struct SegmentHold {
+    /// The phases, in the cycle's order (from the last phase to the first when the cycle has no
+    /// rest and the posture is held across its end).
+    phases: Vec<usize>,
+    /// Their total duration \[s\].
+    hold_s: f64,
+    /// How often a cycle brings the segment beyond its neutral zone, per minute of work.
+    per_min: f64,
+}
+
+impl SegmentHold {
+    /// The phases' names: "'place'", "'reach', 'bring' and 'place'" (each name once).
+    fn names(&self, task: &Task) -> String {
+        let mut names: Vec<String> = Vec::new();
+        for &p in &self.phases {
+            let n = format!("'{}'", task.phases[p].name);
+            if !names.contains(&n) {
+                names.push(n);
+            }
+        }
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+            _ => names.concat(),
+        }
+    }
+
+    /// The largest of `value` over the hold's phases.
+    fn worst(&self, value: impl Fn(usize) -> f64) -> f64 {
+        self.phases
+            .iter()
+            .map(|&p| value(p))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// The runs of consecutive phases in which `beyond(p)` holds: a segment's holds beyond its
+/// neutral zone. The rest breaks a run (the worker's arms hang, the trunk and head are upright);
+/// without rest a run may go on from the cycle's last phase to its first. A segment beyond its
+/// zone in every phase of a cycle without rest is one hold of the cycle's length (as
+/// [`Task::holds`] counts a cycle of the same work).
+fn segment_holds(task: &Task, beyond: impl Fn(usize) -> bool) -> Vec<SegmentHold> {
+    let n = task.phases.len();
+    let on: Vec<bool> = (0..n).map(&beyond).collect();
+    if !on.iter().any(|&b| b) {
+        return Vec::new();
+    }
+    let wraps = task.rest_s <= 0.0;
+    let mut runs: Vec<Vec<usize>> = Vec::new();
+    if on.iter().all(|&b| b) {
+        runs.push((0..n).collect());
+    } else {
+        // start after a phase that is not beyond, so that a run across the cycle's end is whole
+        let start = if wraps {
+            (0..n).find(|&p| !on[p]).map_or(0, |p| p + 1)
+        } else {
+            0
+        };
+        let mut current: Vec<usize> = Vec::new();
+        for k in 0..n {
+            let p = (start + k) % n;
+            if !wraps && p == 0 && !current.is_empty() {
+                runs.push(std::mem::take(&mut current));
+            }
+            if on[p] {
+                current.push(p);
+            } else if !current.is_empty() {
+                runs.push(std::mem::take(&mut current));
+            }
+        }
+        if !current.is_empty() {
+            runs.push(current);
+        }
+    }
+    let per_min = runs.len() as f64 * 60.0 / task.cycle_s().max(1e-9);
+    runs.into_iter()
+        .map(|phases| SegmentHold {
+            hold_s: phases.iter().map(|&p| task.phases[p].duration_s).sum(),
+            phases,
+            per_min,
+        })
+        .collect()
+}
+
+/// The holds in which a segment's `angle` (rounded to the degree) is beyond `limit_deg`.
+fn holds_beyond(
+    task: &Task,
+    phases: &[PhaseAssessment],
+    angle: &dyn Fn(&BodyAngles) -> f64,
+    limit_deg: f64,
+) -> Vec<SegmentHold> {
+    segment_holds(task, |p| {
+        phases
+            .get(p)
+            .and_then(|pa| pa.angles.as_ref())
+            .is_some_and(|a| angle(a).round() > limit_deg)
+    })
+}
+
+/// A segment's largest angle over a hold's phases, rounded to the degree.
+fn worst_deg(
+    h: &SegmentHold,
+    phases: &[PhaseAssessment],
+    angle: &dyn Fn(&BodyAngles) -> f64,
+) -> f64 {
+    h.worst(|p| {
+        phases[p]
+            .angles
+            .as_ref()
+            .map_or(f64::NEG_INFINITY, |a| angle(a).round())
+    })
+}
+
+/// A segment an angle of which to judge, in words: "trunk twisted".
+type SegmentAngle = (&'static str, fn(&BodyAngles) -> f64);
+
+/// The segments whose zones are graded by angle, with their holding times' (minutes at 20°,
+/// at 60°): the trunk's inclination (ISO 11226 Figure 2) and each upper arm's elevation (Figure
+/// 3). Beyond 60° not acceptable; 20–60° acceptable up to a holding time that falls with the angle
+/// (static) or at fewer than 2 a minute (EN 1005-4, movements).
+const GRADED: [(SegmentAngle, (f64, f64)); 3] = [
+    (
+        ("trunk inclined", |a| a.trunk_flexion_deg),
+        ISO_TRUNK_HOLD_MIN,
+    ),
+    (
+        ("right upper arm raised", |a| {
+            a.right.upper_arm_elevation_deg
+        }),
+        ISO_ARM_HOLD_MIN,
+    ),
+    (
+        ("left upper arm raised", |a| a.left.upper_arm_elevation_deg),
+        ISO_ARM_HOLD_MIN,
+    ),
+];
+
+/// The trunk's asymmetry: beyond 10° not acceptable (static), or at 2 or more a minute
+/// (movements).
+const TRUNK_ASYMMETRY: [SegmentAngle; 3] = [
+    ("trunk bent sideways", |a| a.trunk_side_bend_deg.abs()),
+    ("trunk twisted", |a| a.trunk_twist_deg.abs()),
+    ("trunk turned against the feet", |a| {
+        a.trunk_turn_deg().abs()
+    }),
+];
+
 fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> Criterion {
     let mut exceeded = Vec::new();
     let mut caution = Vec::new();
-    let mut judged = 0;
-    for (p, pa) in phases.iter().enumerate() {
-        let Some(ph) = task.phases.get(p) else {
-            continue;
-        };
-        // each hold once: at its first phase
-        if p > 0 && task.phases[p - 1].same_work(ph) {
-            continue;
+    let is_static = |h: &&SegmentHold| h.hold_s > ISO_STATIC_S;
+    // a posture held longer than 4 s, by the same work or by a segment beyond a zone
+    let mut judged = (0..phases.len().min(task.phases.len()))
+        .filter(|&p| holds.get(p).map_or(task.phases[p].duration_s, |h| h.0) > ISO_STATIC_S)
+        .count();
+    let beyond =
+        |angle: &dyn Fn(&BodyAngles) -> f64, limit: f64| holds_beyond(task, phases, angle, limit);
+    for ((words, angle), hold_min) in GRADED {
+        // beyond 60°: not acceptable held
+        let mut flagged = Vec::new();
+        for h in beyond(&angle, 60.0).iter().filter(is_static) {
+            judged += 1;
+            flagged.extend(h.phases.iter().copied());
+            exceeded.push(format!(
+                "{}: {} {:.0}° from the vertical, held {:.0} s (beyond 60°)",
+                h.names(task),
+                words,
+                worst_deg(h, phases, &angle),
+                h.hold_s
+            ));
         }
-        let hold_s = holds.get(p).map_or(ph.duration_s, |h| h.0);
-        let Some(a) = pa.angles.as_ref() else {
-            continue;
-        };
-        if hold_s <= ISO_STATIC_S {
-            continue;
+        // 20–60°: up to the holding time of its largest angle (held beyond 60° as above)
+        for h in beyond(&angle, 20.0).iter().filter(is_static) {
+            judged += 1;
+            if h.phases.iter().any(|p| flagged.contains(p)) {
+                continue;
+            }
+            let t = worst_deg(h, phases, &angle).min(60.0);
+            let max_s = iso_holding_time_s(t, hold_min);
+            if h.hold_s > max_s {
+                exceeded.push(format!(
+                    "{}: {words} {t:.0}° held {:.0} s (at most {max_s:.0} s)",
+                    h.names(task),
+                    h.hold_s
+                ));
+            }
         }
+    }
+    // beyond these not acceptable held, whatever the time: leaning back, the trunk's asymmetry,
+    // the head (ISO 11226 Figure 4) inclined beyond 85° or tilted back
+    let not_acceptable: [(SegmentAngle, f64, &str); 6] = [
+        (
+            ("trunk leaning back", |a| -a.trunk_flexion_deg),
+            ISO_BACKWARD_TOLERANCE_DEG,
+            "",
+        ),
+        (TRUNK_ASYMMETRY[0], 10.0, " (beyond 10°)"),
+        (TRUNK_ASYMMETRY[1], 10.0, " (beyond 10°)"),
+        (TRUNK_ASYMMETRY[2], 10.0, " (beyond 10°)"),
+        (
+            ("head inclined", |a| a.head_inclination_deg),
+            85.0,
+            " (beyond 85°)",
+        ),
+        (
+            ("head tilted back", |a| -a.head_inclination_deg),
+            ISO_BACKWARD_TOLERANCE_DEG,
+            "",
+        ),
+    ];
+    for ((what, angle), limit, beyond_words) in not_acceptable {
+        for h in beyond(&angle, limit).iter().filter(is_static) {
+            judged += 1;
+            exceeded.push(format!(
+                "{}: {what} {:.0}°{beyond_words}",
+                h.names(task),
+                worst_deg(h, phases, &angle)
+            ));
+        }
+    }
+    // the neck flexed beyond 25° against the trunk not acceptable; the head inclined 25–85° for
+    // a limited holding time
+    let head = |a: &BodyAngles| a.head_inclination_deg;
+    let neck = |a: &BodyAngles| a.neck_flexion_deg;
+    for h in beyond(&neck, 25.0).iter().filter(is_static) {
         judged += 1;
-        let name = &ph.name;
-        let t = a.trunk_flexion_deg.round();
-        if t > 60.0 {
-            exceeded.push(format!(
-                "'{name}': trunk inclined {t:.0}° from the vertical (beyond 60°)"
-            ));
-        } else if t > 20.0 {
-            let max_s = iso_holding_time_s(t, ISO_TRUNK_HOLD_MIN);
-            if hold_s > max_s {
-                exceeded.push(format!(
-                    "'{name}': trunk inclined {t:.0}° held {hold_s:.0} s (at most {max_s:.0} s)"
-                ));
-            }
-        } else if t < -ISO_BACKWARD_TOLERANCE_DEG {
-            exceeded.push(format!("'{name}': trunk leaning back {:.0}°", -t));
-        }
-        for (v, what) in [
-            (a.trunk_side_bend_deg, "trunk bent sideways"),
-            (a.trunk_twist_deg, "trunk twisted"),
-            (a.trunk_turn_deg(), "trunk turned against the feet"),
-        ] {
-            if v.abs().round() > 10.0 {
-                exceeded.push(format!("'{name}': {what} {:.0}° (beyond 10°)", v.abs()));
-            }
-        }
-        for (arm, side) in [(&a.right, "right"), (&a.left, "left")] {
-            let e = arm.upper_arm_elevation_deg.round();
-            if e > 60.0 {
-                exceeded.push(format!(
-                    "'{name}': {side} upper arm raised {e:.0}° from the vertical, held {hold_s:.0} s (beyond 60°)"
-                ));
-            } else if e > 20.0 {
-                let max_s = iso_holding_time_s(e, ISO_ARM_HOLD_MIN);
-                if hold_s > max_s {
-                    exceeded.push(format!(
-                        "'{name}': {side} upper arm raised {e:.0}° held {hold_s:.0} s (at most {max_s:.0} s)"
-                    ));
-                }
-            }
-        }
-        let head = a.head_inclination_deg.round();
-        let neck = a.neck_flexion_deg.round();
-        if head > 85.0 {
-            exceeded.push(format!("'{name}': head inclined {head:.0}° (beyond 85°)"));
-        } else if head < -ISO_BACKWARD_TOLERANCE_DEG {
-            exceeded.push(format!("'{name}': head tilted back {:.0}°", -head));
-        } else if neck > 25.0 {
-            exceeded.push(format!(
-                "'{name}': neck flexed {neck:.0}° against the trunk (beyond 25°)"
-            ));
-        } else if head > 25.0 {
-            caution.push(format!(
-                "'{name}': head inclined {head:.0}° for {hold_s:.0} s (acceptable only for a limited holding time)"
-            ));
-        }
+        exceeded.push(format!(
+            "{}: neck flexed {:.0}° against the trunk (beyond 25°), held {:.0} s",
+            h.names(task),
+            worst_deg(h, phases, &neck),
+            h.hold_s
+        ));
+    }
+    for h in beyond(&head, 25.0).iter().filter(is_static) {
+        judged += 1;
+        caution.push(format!(
+            "{}: head inclined {:.0}° for {:.0} s (acceptable only for a limited holding time)",
+            h.names(task),
+            worst_deg(h, phases, &head).min(85.0),
+            h.hold_s
+        ));
     }
     let (status, words) = if !exceeded.is_empty() {
         (
@@ -649,76 +822,66 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
 fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> Criterion {
     let mut exceeded = Vec::new();
     let mut caution = Vec::new();
-    let mut judged = 0;
-    for (p, pa) in phases.iter().enumerate() {
-        let (Some(ph), Some(a)) = (task.phases.get(p), pa.angles.as_ref()) else {
-            continue;
-        };
-        if p > 0 && task.phases[p - 1].same_work(ph) {
-            continue;
+    // a posture held 4 s or less, by the same work
+    let judged = (0..phases.len().min(task.phases.len()))
+        .filter(|&p| {
+            let hold_s = holds.get(p).map_or(task.phases[p].duration_s, |h| h.0);
+            hold_s > 0.0 && hold_s <= ISO_STATIC_S
+        })
+        .count();
+    // a segment's movement: beyond a zone for 4 s or less, so many times a minute
+    let moves = |angle: &dyn Fn(&BodyAngles) -> f64, limit: f64| {
+        let mut v = holds_beyond(task, phases, angle, limit);
+        v.retain(|h| h.hold_s > 0.0 && h.hold_s <= ISO_STATIC_S);
+        v
+    };
+    let mut out = |bad: bool, what: String| {
+        if bad {
+            exceeded.push(what)
+        } else {
+            caution.push(what)
         }
-        let (hold_s, per_min) = holds.get(p).copied().unwrap_or((ph.duration_s, 0.0));
-        if hold_s > ISO_STATIC_S || hold_s <= 0.0 {
-            continue;
-        }
-        judged += 1;
-        let high = per_min >= EN_HIGH_FREQUENCY_PER_MIN;
-        let name = &ph.name;
-        let mut out = |bad: bool, what: String| {
-            if bad {
-                exceeded.push(what)
-            } else {
-                caution.push(what)
-            }
-        };
-        let t = a.trunk_flexion_deg.round();
-        if t > 60.0 {
+    };
+    for ((words, angle), _) in GRADED {
+        // "trunk inclined" reads "trunk flexed" in a movement
+        let words = words.replace("trunk inclined", "trunk flexed");
+        for h in moves(&angle, 60.0) {
+            let high = h.per_min >= EN_HIGH_FREQUENCY_PER_MIN;
             out(
                 high,
                 format!(
-                    "'{name}': trunk flexed {t:.0}° from the vertical (beyond 60°) {per_min:.1} times a minute"
-                ),
-            );
-        } else if t > 20.0 && high {
-            out(
-                false,
-                format!(
-                    "'{name}': trunk flexed {t:.0}° from the vertical (20–60°, conditionally acceptable) {per_min:.1} times a minute"
+                    "{}: {words} {:.0}° from the vertical (beyond 60°) {:.1} times a minute",
+                    h.names(task),
+                    worst_deg(&h, phases, &angle),
+                    h.per_min
                 ),
             );
         }
-        for (v, what) in [
-            (a.trunk_side_bend_deg, "trunk bent sideways"),
-            (a.trunk_twist_deg, "trunk twisted"),
-            (a.trunk_turn_deg(), "trunk turned against the feet"),
-        ] {
-            if v.abs().round() > 10.0 {
-                out(
-                    high,
-                    format!(
-                        "'{name}': {what} {:.0}° (beyond 10°) {per_min:.1} times a minute",
-                        v.abs()
-                    ),
-                );
-            }
-        }
-        for (arm, side) in [(&a.right, "right"), (&a.left, "left")] {
-            let e = arm.upper_arm_elevation_deg.round();
-            if e > 60.0 {
-                out(
-                    high,
-                    format!(
-                        "'{name}': {side} upper arm raised {e:.0}° (beyond 60°) {per_min:.1} times a minute"
-                    ),
-                );
-            } else if e > 20.0 && high {
+        for h in moves(&angle, 20.0) {
+            let worst = worst_deg(&h, phases, &angle);
+            if h.per_min >= EN_HIGH_FREQUENCY_PER_MIN && worst <= 60.0 {
                 out(
                     false,
                     format!(
-                        "'{name}': {side} upper arm raised {e:.0}° from the vertical (20–60°, conditionally acceptable) {per_min:.1} times a minute"
+                        "{}: {words} {worst:.0}° from the vertical (20–60°, conditionally acceptable) {:.1} times a minute",
+                        h.names(task),
+                        h.per_min
                     ),
                 );
             }
+        }
+    }
+    for (what, angle) in TRUNK_ASYMMETRY {
+        for h in moves(&angle, 10.0) {
+            out(
+                h.per_min >= EN_HIGH_FREQUENCY_PER_MIN,
+                format!(
+                    "{}: {what} {:.0}° (beyond 10°) {:.1} times a minute",
+                    h.names(task),
+                    worst_deg(&h, phases, &angle),
+                    h.per_min
+                ),
+            );
         }
     }
     let (status, words) = if !exceeded.is_empty() {

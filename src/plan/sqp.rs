@@ -648,18 +648,7 @@ fn start_curvature(
 ) {
     let n = task.model.nq();
     explicit_curvature(task, scene, pw, work, prob, q);
-    let h = nalgebra::DMatrix::from_fn(n, n, |i, k| {
-        0.5 * (work.hess[i * n + k] + work.hess[k * n + i])
-    });
-    let eig = h.symmetric_eigen();
-    let v = &eig.eigenvectors;
-    for i in 0..n {
-        for k in 0..n {
-            work.bfgs[i * n + k] = (0..n)
-                .map(|e| v[(i, e)] * eig.eigenvalues[e].max(START_CURVATURE_FLOOR) * v[(k, e)])
-                .sum();
-        }
-    }
+    raise_eigenvalues(n, &work.hess, |_| 0.0, &mut work.bfgs);
     work.first_update = false;
     work.have_last = false;
 }
@@ -1012,20 +1001,32 @@ fn keep_model_positive(work: &mut SqpWork) {
         work.model = c.unpack_dirty();
         return;
     }
-    let m = nalgebra::DMatrix::from_fn(n, n, |i, k| {
-        0.5 * (work.bfgs[i * n + k] + work.bfgs[k * n + i]) + if i == k { d(i, work) } else { 0.0 }
+    let bfgs = work.bfgs.clone();
+    let shift: Vec<f64> = (0..n).map(|i| d(i, work)).collect();
+    raise_eigenvalues(n, &bfgs, |i| shift[i], &mut work.bfgs);
+    work.model = nalgebra::DMatrix::zeros(n, n);
+}
+
+/// `out = V·max(Λ, floor)·Vᵀ − S`, where `V Λ Vᵀ` is the eigendecomposition of the symmetric
+/// part of the row-major `n × n` matrix `m` plus the diagonal `S` (`shift(i)` on row `i`): the
+/// nearest matrix whose sum with `S` has its eigenvalues at least [`START_CURVATURE_FLOOR`].
+/// Allocates (an eigendecomposition); called once per local solve and on the curvature model's
+/// rare repairs.
+fn raise_eigenvalues(n: usize, m: &[f64], shift: impl Fn(usize) -> f64, out: &mut [f64]) {
+    let diag = |i: usize, k: usize| if i == k { shift(i) } else { 0.0 };
+    let sym = nalgebra::DMatrix::from_fn(n, n, |i, k| {
+        0.5 * (m[i * n + k] + m[k * n + i]) + diag(i, k)
     });
-    let eig = m.symmetric_eigen();
+    let eig = sym.symmetric_eigen();
     let v = &eig.eigenvectors;
     for i in 0..n {
         for k in 0..n {
-            work.bfgs[i * n + k] = (0..n)
+            out[i * n + k] = (0..n)
                 .map(|e| v[(i, e)] * eig.eigenvalues[e].max(START_CURVATURE_FLOOR) * v[(k, e)])
                 .sum::<f64>()
-                - if i == k { d(i, work) } else { 0.0 };
+                - diag(i, k);
         }
     }
-    work.model = nalgebra::DMatrix::zeros(n, n);
 }
 
 /// Remembers the iterate, its Lagrangian gradient and the duals for the next BFGS update.

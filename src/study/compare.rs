@@ -66,6 +66,12 @@ pub struct LayoutOutcome {
     /// lifts are declared, else the largest lift's LI; null without declared lifts.
     #[serde(default)]
     pub lifting_index: Option<f64>,
+    /// Why the lifting index is not defined, when a declared lift lies outside the lifting
+    /// equation's limits (an RWL of 0: no load is recommended; `lifting_index` is then null):
+    /// "'table to shelf' at the destination: H 66.5 cm beyond 63 cm (HM = 0)". Such a layout
+    /// ranks after every layout whose index is defined.
+    #[serde(default)]
+    pub lifting_outside_limits: Option<String>,
     /// The worse of the ISO 11226 (static postures) and EN 1005-4 (movements) criteria of the
     /// shift verdict, and its findings.
     pub posture_status: crate::assess::verdict::Status,
@@ -223,7 +229,8 @@ pub fn outcome(
         not_determined: a.verdict.not_determined.clone(),
         shift_status: a.verdict.status,
         shift_verdict: a.verdict.headline.clone(),
-        lifting_index: lifting_index(a),
+        lifting_index: lifting(a).and_then(Result::ok),
+        lifting_outside_limits: lifting(a).and_then(Result::err),
         posture_status: posture.map_or(crate::assess::verdict::Status::Acceptable, |c| c.status),
         posture_findings: posture.map_or(String::new(), |c| c.words.clone()),
         min_clearance_m: if min_clearance.is_finite() {
@@ -263,15 +270,25 @@ pub fn outcome(
     }
 }
 
-/// The lifting index that decides a plan's layout (see [`LayoutOutcome::lifting_index`]).
-fn lifting_index(a: &Assessment) -> Option<f64> {
-    let l = a.lifting.as_ref()?.as_ref().ok()?;
-    l.composite.as_ref().and_then(|c| c.cli).or_else(|| {
-        l.lifts
-            .iter()
-            .filter_map(|r| r.lifting_index)
-            .max_by(|a, b| a.total_cmp(b))
-    })
+/// The lifting index that decides a plan's layout, or why it is not defined; `None` without
+/// declared lifts (see [`crate::assess::lifting::Lifting::deciding_index`]).
+fn lifting(a: &Assessment) -> Option<Result<f64, String>> {
+    a.lifting
+        .as_ref()?
+        .as_ref()
+        .ok()
+        .map(|l| l.deciding_index())
+}
+
+impl LayoutOutcome {
+    /// The deciding lifting index, or why it is not defined; `None` without declared lifts.
+    pub fn lifting(&self) -> Option<Result<f64, String>> {
+        match (&self.lifting_outside_limits, self.lifting_index) {
+            (Some(why), _) => Some(Err(why.clone())),
+            (None, Some(x)) => Some(Ok(x)),
+            (None, None) => None,
+        }
+    }
 }
 
 /// The figures the ranking compares.
@@ -306,7 +323,7 @@ fn key(o: &LayoutOutcome, variant: Option<usize>) -> Key {
         exceeds: o.exhaustion.as_ref().is_some_and(|e| e.exceeds_strength),
         back: back_key(o.back_compression_max_n),
         exhausted_at_s,
-        li: li_key(o.lifting_index),
+        li: crate::assess::lifting::risk_key(o.lifting().as_ref()),
         postures: o.posture_status,
         capable: capable_class(o.capable_men, o.capable_women),
         shift: o.shift_status,
@@ -329,17 +346,6 @@ fn back_key(compression_n: Option<f64>) -> (u8, f64) {
     match compression_n {
         Some(c) if c > limits.compression_max_limit_n => (2, c),
         Some(c) if c > limits.compression_action_limit_n => (1, c),
-        _ => (0, 0.0),
-    }
-}
-
-/// The lifting index's class — 0: at most 1 (nearly all healthy workers), 1: at most 3 (an
-/// increased risk for some), 2: above 3 (many workers at elevated risk; Waters et al. 1994,
-/// Applications manual) — and, above 1, the index itself (lower ranks better).
-fn li_key(li: Option<f64>) -> (u8, f64) {
-    match li {
-        Some(x) if x > 3.0 => (2, x),
-        Some(x) if x > 1.0 => (1, x),
         _ => (0, 0.0),
     }
 }
@@ -447,7 +453,7 @@ fn findings(layouts: &[LayoutOutcome], robustness: &[Robustness]) -> Vec<String>
 /// (`o`'s first).
 pub fn decisive(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
     let (a, b) = (key(best, None), key(o, None));
-    let opt_li = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.2}"));
+    let li = |o: &LayoutOutcome| crate::assess::lifting::index_words(o.lifting().as_ref());
     if a.feasible != b.feasible || a.problems != b.problems {
         "whether it can be done as planned".into()
     } else if a.exceeds != b.exceeds {
@@ -455,11 +461,7 @@ pub fn decisive(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
     } else if a.exhausted_at_s != b.exhausted_at_s {
         "no exhaustion within the task".into()
     } else if a.li != b.li {
-        format!(
-            "NIOSH's lifting index ({} → {})",
-            opt_li(o.lifting_index),
-            opt_li(best.lifting_index)
-        )
+        format!("NIOSH's lifting index ({} → {})", li(o), li(best))
     } else if a.postures != b.postures {
         format!(
             "postures within ISO 11226 / EN 1005-4 ({} → {})",
@@ -507,20 +509,8 @@ fn what_changes(best: &LayoutOutcome, o: &LayoutOutcome) -> String {
     let why = decisive(best, o);
     let worse = |what: String| format!("{what} (worse here; the ranking puts {why} before it)");
     let mut parts = Vec::new();
-    if o.lifting_index.is_some() || best.lifting_index.is_some() {
-        let f = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.2}"));
-        let line = format!(
-            "NIOSH lifting index {} → {}",
-            f(o.lifting_index),
-            f(best.lifting_index)
-        );
-        parts.push(
-            if best.lifting_index.unwrap_or(0.0) > o.lifting_index.unwrap_or(0.0) + 1e-9 {
-                worse(line)
-            } else {
-                line
-            },
-        );
+    if let Some(w) = super::what_if::lifting_change(o.lifting().as_ref(), best.lifting().as_ref()) {
+        parts.push(if w.worse { worse(w.words) } else { w.words });
     }
     let line = format!(
         "postures (ISO 11226 / EN 1005-4) {} → {}",
@@ -804,6 +794,12 @@ fn check_shard_values(s: &CompareShard) -> Result<(), (String, String)> {
         finite(o.endurance_share, f("endurance_share"), 0.0, big)?;
         if let Some(li) = o.lifting_index {
             finite(li, f("lifting_index"), 0.0, big)?;
+            if o.lifting_outside_limits.is_some() {
+                return Err((
+                    f("lifting_outside_limits"),
+                    "is given with a lifting index: an index outside the equation's limits is not defined".into(),
+                ));
+            }
         }
         if let Some(c) = o.back_compression_max_n {
             finite(c, f("back_compression_max_n"), 0.0, big)?;
@@ -945,8 +941,9 @@ pub fn comparison_table(c: &Comparison) -> String {
             .unwrap_or_default()
             .to_string()
     });
-    row("NIOSH lifting index", &|o| {
-        o.lifting_index.map_or("—".into(), |x| format!("{x:.2}"))
+    row("NIOSH lifting index", &|o| match o.lifting() {
+        None => "—".into(),
+        lifting => crate::assess::lifting::index_words(lifting.as_ref()),
     });
     row("postures (ISO 11226 / EN 1005-4)", &|o| {
         o.posture_status.words().to_string()

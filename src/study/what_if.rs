@@ -49,8 +49,13 @@ pub const STANDING_AREA_HALF_SIDE_M: f64 = 0.5;
 pub const ADVISE_FRACTION: f64 = 0.10;
 
 /// The figures of one plan that the what-if compares.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Figures {
+    /// NIOSH's lifting index that decides the task (the composite index with several lifts);
+    /// `None` without declared lifts or when it is not defined.
+    pub lifting_index: Option<f64>,
+    /// Why the lifting index is not defined, when a lift lies outside the equation's limits.
+    pub lifting_outside_limits: Option<String>,
     /// Total U per hour of simulated work \[min/h\].
     pub u_per_hour_min: f64,
     pub lowest_capacity: f64,
@@ -81,10 +86,57 @@ pub fn relative_change(a: f64, b: f64) -> String {
     }
 }
 
+/// A change of the deciding lifting index in words ("NIOSH lifting index not defined (outside
+/// the equation's limits) → 0.93"), and whether it is for the worse: a higher risk class
+/// ([`crate::assess::lifting::risk_key`]) or, both defined, a higher index. `None` when neither
+/// side declares a lift.
+pub fn lifting_change(
+    before: Option<&Result<f64, String>>,
+    after: Option<&Result<f64, String>>,
+) -> Option<LiftingChange> {
+    use crate::assess::lifting::{index_words, risk_key};
+    if before.is_none() && after.is_none() {
+        return None;
+    }
+    let worse = match (before, after) {
+        (Some(Ok(b)), Some(Ok(a))) => *a > *b + 1e-9,
+        _ => risk_key(after).0 > risk_key(before).0,
+    };
+    Some(LiftingChange {
+        words: format!(
+            "NIOSH lifting index {} → {}",
+            index_words(before),
+            index_words(after)
+        ),
+        worse,
+    })
+}
+
+/// See [`lifting_change`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LiftingChange {
+    pub words: String,
+    pub worse: bool,
+}
+
 impl Figures {
     /// Whether a muscle group gives out within the task.
     pub fn exhausted(&self) -> bool {
         self.exhaustion_s.is_some()
+    }
+
+    /// The deciding lifting index, or why it is not defined; `None` without declared lifts.
+    pub fn lifting(&self) -> Option<Result<f64, String>> {
+        match (&self.lifting_outside_limits, self.lifting_index) {
+            (Some(why), _) => Some(Err(why.clone())),
+            (None, Some(x)) => Some(Ok(x)),
+            (None, None) => None,
+        }
+    }
+
+    /// The lifting index's risk class ([`crate::assess::lifting::risk_key`]).
+    fn lifting_class(&self) -> u8 {
+        crate::assess::lifting::risk_key(self.lifting().as_ref()).0
     }
 
     /// What changes from these figures to `after`, in words, one item per figure.
@@ -103,6 +155,9 @@ impl Figures {
                 duration(b)
             )),
             _ => {}
+        }
+        if let Some(l) = lifting_change(self.lifting().as_ref(), after.lifting().as_ref()) {
+            v.push(l.words);
         }
         if self.zone_excess_deg > 0.0 || after.zone_excess_deg > 0.0 {
             v.push(format!(
@@ -186,20 +241,33 @@ impl WhatIf {
         self.before.exhausted() && !self.after.exhausted()
     }
 
+    /// Whether the change brings NIOSH's lifting index into a lower risk class (defined where
+    /// it was not, at most 3 where it was above, at most 1 where it was above).
+    pub fn lowers_lifting_risk(&self) -> bool {
+        self.after.lifting_class() < self.before.lifting_class()
+    }
+
     /// Whether the report's verdict recommends the change: it can be done as planned, every
-    /// phase of its plan converged, no group gives out after it, and either it ends an
-    /// exhaustion ([`Self::ends_exhaustion`], whatever fatigue per hour does: a plan that gives
-    /// out stops early, so its figure per hour is not comparable) or it lowers fatigue per hour
-    /// by at least [`ADVISE_FRACTION`]. A change after which a group still gives out is not
-    /// advised, however much later: the job stays one the worker cannot keep up, and the rates
-    /// of two runs cut short at different times do not compare.
+    /// phase of its plan converged, no group gives out after it, NIOSH's lifting index does not
+    /// rise, and it ends an exhaustion ([`Self::ends_exhaustion`], whatever fatigue per hour
+    /// does: a plan that gives out stops early, so its figure per hour is not comparable),
+    /// brings the lifting index into a lower risk class ([`Self::lowers_lifting_risk`]) or lowers
+    /// fatigue per hour by at least [`ADVISE_FRACTION`]. A change after which a group still
+    /// gives out is not advised, however much later: the job stays one the worker cannot keep
+    /// up, and the rates of two runs cut short at different times do not compare.
     pub fn advised(&self) -> bool {
         let lowers = self.before.u_per_hour_min > 0.0
             && self.after.u_per_hour_min <= (1.0 - ADVISE_FRACTION) * self.before.u_per_hour_min;
+        let lifting_worse = lifting_change(
+            self.before.lifting().as_ref(),
+            self.after.lifting().as_ref(),
+        )
+        .is_some_and(|l| l.worse);
         self.problems.is_empty()
             && self.not_converged.is_empty()
             && !self.after.exhausted()
-            && (self.ends_exhaustion() || lowers)
+            && !lifting_worse
+            && (self.ends_exhaustion() || self.lowers_lifting_risk() || lowers)
     }
 }
 
@@ -220,7 +288,14 @@ fn not_converged(plan: &Plan) -> Vec<String> {
 
 fn figures(plan: &Plan, a: &Assessment) -> Figures {
     let s = &plan.summary;
+    let lifting = a
+        .lifting
+        .as_ref()
+        .and_then(|l| l.as_ref().ok())
+        .map(|l| l.deciding_index());
     Figures {
+        lifting_index: lifting.clone().and_then(Result::ok),
+        lifting_outside_limits: lifting.and_then(Result::err),
         u_per_hour_min: if s.duration_s > 0.0 {
             s.total_u / (s.duration_s / 3600.0)
         } else {
@@ -435,9 +510,11 @@ pub fn what_ifs(
 }
 
 /// Orders what-ifs for the report: those that can be done as planned first, then those after
-/// which no group gives out, then by fatigue per hour after the change, lowest first (where a
-/// group gives out after each, by when it does, latest first).
+/// which no group gives out, then by NIOSH's lifting index after the change (its risk class,
+/// then the index above 1, as `compare` ranks layouts), then by fatigue per hour after the
+/// change, lowest first (where a group gives out after each, by when it does, latest first).
 fn rank(v: &mut [WhatIf]) {
+    let li = |w: &WhatIf| crate::assess::lifting::risk_key(w.after.lifting().as_ref());
     v.sort_by(|x, y| {
         (!x.problems.is_empty())
             .cmp(&!y.problems.is_empty())
@@ -449,6 +526,8 @@ fn rank(v: &mut [WhatIf]) {
                     .unwrap_or(0.0)
                     .total_cmp(&x.after.exhaustion_s.unwrap_or(0.0)),
             )
+            .then(li(x).0.cmp(&li(y).0))
+            .then(li(x).1.total_cmp(&li(y).1))
             .then(x.after.u_per_hour_min.total_cmp(&y.after.u_per_hour_min))
     });
 }
@@ -459,6 +538,8 @@ mod tests {
 
     fn figures(u_per_hour_min: f64) -> Figures {
         Figures {
+            lifting_index: None,
+            lifting_outside_limits: None,
             u_per_hour_min,
             lowest_capacity: 0.5,
             back_compression_max_n: None,
@@ -586,5 +667,43 @@ mod tests {
         let mut w = what_if(0.8, 0.0, false);
         w.before.u_per_hour_min = 0.0;
         assert!(!w.advised());
+    }
+
+    /// NIOSH's lifting index in the what-ifs: a change that brings the index into a lower risk
+    /// class is advised although fatigue per hour barely moves, one that raises the index is
+    /// never advised however much it lowers fatigue, and among changes that can be done the
+    /// lower index ranks first (as `compare` ranks layouts); the change is said in words.
+    #[test]
+    fn the_lifting_index_decides_before_fatigue() {
+        let outside = Some("'lift' at the destination: H 66.5 cm beyond 63 cm (HM = 0)".into());
+        // from not defined to 0.93, fatigue per hour 1 % lower
+        let mut defined = what_if(0.1, 99.0, false);
+        defined.before.lifting_outside_limits = outside.clone();
+        defined.after.lifting_index = Some(0.93);
+        assert!(defined.lowers_lifting_risk() && defined.advised());
+        assert_eq!(
+            defined.before.changes_to(&defined.after)[0],
+            "NIOSH lifting index not defined (outside the equation's limits) → 0.93"
+        );
+        // fatigue per hour 40 % lower, but the index rises from 0.93 to 1.2: not advised
+        let mut higher = what_if(0.2, 60.0, false);
+        higher.before.lifting_index = Some(0.93);
+        higher.after.lifting_index = Some(1.2);
+        assert!(!higher.advised());
+        // both within the same class: fatigue decides whether it is advised
+        let mut same = what_if(0.3, 60.0, false);
+        same.before.lifting_index = Some(1.4);
+        same.after.lifting_index = Some(1.3);
+        assert!(same.advised() && !same.lowers_lifting_risk());
+        // ranking: the index after the change before fatigue per hour
+        let mut still_outside = what_if(0.4, 40.0, false);
+        still_outside.before.lifting_outside_limits = outside.clone();
+        still_outside.after.lifting_outside_limits = outside;
+        let mut v = vec![still_outside, higher, same, defined];
+        rank(&mut v);
+        let order: Vec<f64> = v.iter().map(|w| w.after.u_per_hour_min).collect();
+        assert_eq!(order, [99.0, 60.0, 60.0, 40.0]);
+        assert_eq!(v[1].after.lifting_index, Some(1.2));
+        assert_eq!(v[2].after.lifting_index, Some(1.3));
     }
 }

@@ -1124,6 +1124,7 @@ fn compare_ranks_the_raised_pallet_first() {
     );
     assert_eq!(raised["rank"], 1, "{v:#}");
     assert_eq!(floor["rank"], 2);
+    a_lift_outside_the_equation_ranks_last(raised);
     let duration = |l: &Value| num(&l["simulated_duration_s"]).unwrap();
     if duration(floor) != duration(raised) {
         for f in v["findings"].as_array().unwrap() {
@@ -1134,4 +1135,37 @@ fn compare_ranks_the_raised_pallet_first() {
             );
         }
     }
+}
+
+/// NIOSH's lifting index in the ranking, on a real layout's outcome given three indices: a lift
+/// outside the equation's limits (RWL 0, no load recommended: the index is not defined) ranks
+/// after an index above 3, which ranks after one above 1 (Waters et al. 1994, Applications
+/// manual); the deciding sentence says "not defined" rather than skipping the lift.
+fn a_lift_outside_the_equation_ranks_last(layout: &Value) {
+    use posture_opt::study::compare::{LayoutOutcome, decisive, rank_order};
+    let with = |li: Option<f64>, outside: Option<&str>| {
+        let mut o: LayoutOutcome = serde_json::from_value(layout.clone()).unwrap();
+        o.lifting_index = li;
+        o.lifting_outside_limits = outside.map(str::to_string);
+        o
+    };
+    let undefined = with(
+        None,
+        Some("'table to shelf' at the destination: H 66.5 cm beyond 63 cm (HM = 0)"),
+    );
+    let (high, moderate) = (with(Some(3.4), None), with(Some(1.45), None));
+    assert_eq!(
+        rank_order(&high, &undefined, None),
+        std::cmp::Ordering::Less
+    );
+    assert_eq!(rank_order(&moderate, &high, None), std::cmp::Ordering::Less);
+    assert_eq!(
+        rank_order(&moderate, &undefined, None),
+        std::cmp::Ordering::Less
+    );
+    let why = decisive(&moderate, &undefined);
+    assert_eq!(
+        why,
+        "NIOSH's lifting index (not defined (outside the equation's limits) → 1.45)"
+    );
 }

@@ -2826,6 +2826,16 @@ fn compare_merge_checks_the_numbers_of_its_shards() {
             .go()
             .bad(&["bad.json", field]);
     }
+    // a lifting index given together with the reason it is not defined
+    let mut bad = shard.clone();
+    bad["outcomes"][0]["lifting_index"] = serde_json::json!(1.2);
+    bad["outcomes"][0]["lifting_outside_limits"] = serde_json::json!("'lift': H beyond 63 cm");
+    write(d.path(), "bad.json", serde_json::to_vec(&bad).unwrap());
+    Run::new(&["compare", "--merge", "bad.json"])
+        .cwd(d.path())
+        .timeout(T_CHECK)
+        .go()
+        .bad(&["bad.json", "outcomes[0].lifting_outside_limits"]);
 }
 
 /// Round three, finding 5 (sweep): `sweep --merge` checks its shards' numbers the same way.

@@ -805,6 +805,22 @@ fn a_lift_beyond_the_equations_range_says_why() {
             && lines[2].contains("not defined"),
         "{lines:?}"
     );
+    // the index that decides the task is not defined, with the reason, and ranks as the worst
+    // class of risk
+    use posture_opt::assess::lifting::{Lifting, risk_key};
+    let deciding = Lifting {
+        lifts: vec![r.clone()],
+        composite: None,
+    }
+    .deciding_index();
+    assert_eq!(
+        deciding,
+        Err("'ideal' at the destination: H 66.5 cm beyond 63 cm (HM = 0)".into())
+    );
+    assert!(risk_key(Some(&deciding)) > risk_key(Some(&Ok(5.0))));
+    assert!(risk_key(Some(&Ok(5.0))) > risk_key(Some(&Ok(1.5))));
+    assert!(risk_key(Some(&Ok(1.5))) > risk_key(Some(&Ok(0.9))));
+    assert_eq!(risk_key(Some(&Ok(0.9))), risk_key(None));
     // within range: a number, and one line without control at the destination
     let lines = posture_opt::report::text::lift_lines(&assess_lift(&ideal()).unwrap());
     assert_eq!(

@@ -105,25 +105,15 @@ fn the_timeline_is_the_hold_by_hold_replay_of_the_plans_postures() {
         totals[0]
     );
     // and a shipped multi-phase task with a pushing force
-    let task = Task::from_file(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tasks/bench_assembly.yaml"
-    ))
-    .unwrap();
-    let plan = plan_task_with(&task, held(false)).unwrap();
-    assert_timeline_is_the_replay(&plan, "bench assembly");
+    let (_, plan) = crate::common::shipped_plan("bench_assembly", false);
+    assert_timeline_is_the_replay(plan, "bench assembly");
 }
 
 /// A phase reported converged met the documented KKT test; every phase reports its residual and
 /// iterations; and the converged ones are the rule on a shipped task.
 #[test]
 fn converged_phases_meet_the_kkt_tolerance() {
-    let task = Task::from_file(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tasks/bench_assembly.yaml"
-    ))
-    .unwrap();
-    let plan = plan_task_with(&task, held(false)).unwrap();
+    let (_, plan) = crate::common::shipped_plan("bench_assembly", false);
     let tol = SqpSettings::default().tol_kkt;
     let mut converged = 0;
     for p in &plan.summary.phases {
@@ -166,33 +156,6 @@ fn converged_phases_meet_the_kkt_tolerance() {
     }
 }
 
-/// The cross-seeding round (every group searched again from the other groups' postures once the
-/// passes settle) only extends the search: the passes without it are exactly the first passes
-/// with it, and it never ends higher (both without the pool swap that follows).
-#[test]
-fn cross_seeding_only_lowers_the_first_plans_objective() {
-    for name in ["shelf", "bench_assembly"] {
-        let task =
-            Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
-        let no_swap = PlanOptions {
-            pool_swap: false,
-            ..held(false)
-        };
-        let with = plan_task_with(&task, no_swap).unwrap().summary.passes;
-        let without = plan_task_with(
-            &task,
-            PlanOptions {
-                cross_seeding: false,
-                ..no_swap
-            },
-        )
-        .unwrap()
-        .summary
-        .passes;
-        assert_only_extends(&format!("{name}, the round"), &with, &without);
-    }
-}
-
 /// A search stage only extends the passes: those without it (`without`) are exactly the first of
 /// those with it (`with`), and `with` ends no higher.
 fn assert_only_extends(what: &str, with: &[f64], without: &[f64]) {
@@ -211,22 +174,33 @@ fn assert_only_extends(what: &str, with: &[f64], without: &[f64]) {
 /// first passes with it, it never ends higher, every swapped-in posture still reaches its own
 /// phase's target (a pool holds only its group's optima), it brings no new exhaustion and parks
 /// no more phases at a joint limit.
+///
+/// And the same for the cross-seeding round before it, both without the pool swap.
 #[test]
-fn the_pool_swap_only_lowers_the_first_plans_objective() {
+fn the_pool_swap_and_cross_seeding_only_lower_the_first_plans_objective() {
     for name in ["shelf", "bench_assembly"] {
-        let task =
-            Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
-        let with = plan_task_with(&task, held(false)).unwrap().summary;
-        let without = plan_task_with(
-            &task,
+        let (task, plan) = crate::common::shipped_plan(name, false);
+        let with = &plan.summary;
+        let no_swap = PlanOptions {
+            pool_swap: false,
+            ..held(false)
+        };
+        let without = plan_task_with(task, no_swap).unwrap().summary;
+        assert_only_extends(&format!("{name}, the swap"), &with.passes, &without.passes);
+        let without_round = plan_task_with(
+            task,
             PlanOptions {
-                pool_swap: false,
-                ..held(false)
+                cross_seeding: false,
+                ..no_swap
             },
         )
         .unwrap()
         .summary;
-        assert_only_extends(&format!("{name}, the swap"), &with.passes, &without.passes);
+        assert_only_extends(
+            &format!("{name}, the round"),
+            &without.passes,
+            &without_round.passes,
+        );
         for p in &with.phases {
             assert!(
                 p.hand_error_m < 0.01,
@@ -243,7 +217,7 @@ fn the_pool_swap_only_lowers_the_first_plans_objective() {
             );
         }
         let [parked_with, parked_without] =
-            [&with, &without].map(|s| s.phases.iter().filter(|p| !p.at_limits.is_empty()).count());
+            [with, &without].map(|s| s.phases.iter().filter(|p| !p.at_limits.is_empty()).count());
         assert!(
             parked_with <= parked_without,
             "{name}: the swap parks {parked_with} phases at a limit, against {parked_without}"
@@ -813,7 +787,7 @@ fn adaptive_plan_never_ends_above_the_held_plan() {
             },
         )
         .unwrap();
-        let held = plan_task_with(&task, held(false)).unwrap();
+        let (_, held) = crate::common::shipped_plan(name, false);
         let (a, h) = (adaptive.summary.total_u, held.summary.total_u);
         assert!(
             a <= h * (1.0 + 1e-9),
@@ -828,19 +802,14 @@ fn adaptive_plan_never_ends_above_the_held_plan() {
 #[test]
 fn a_hinted_plan_checks_its_hint_and_reaches_the_targets() {
     use posture_opt::plan::{PlanError, Planner};
-    let task = Task::from_file(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tasks/bench_assembly.yaml"
-    ))
-    .unwrap();
-    let plan = plan_task_with(&task, held(false)).unwrap();
+    let (task, plan) = crate::common::shipped_plan("bench_assembly", false);
     let hint: Vec<Vec<f64>> = plan
         .summary
         .phases
         .iter()
         .map(|p| p.q_rad.clone())
         .collect();
-    let mut planner = Planner::new(&task, PlanOptions::default().sqp).unwrap();
+    let mut planner = Planner::new(task, PlanOptions::default().sqp).unwrap();
     assert!(hint.len() > 1);
     assert!(matches!(
         planner.hint(&hint[1..]),

@@ -281,9 +281,12 @@ fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
 }
 
 fn shelf_plan(zones: bool) -> &'static (Task, Plan) {
-    static ON: OnceLock<(Task, Plan)> = OnceLock::new();
+    if zones {
+        // the default options
+        return crate::common::shipped_plan("shelf", false);
+    }
     static OFF: OnceLock<(Task, Plan)> = OnceLock::new();
-    (if zones { &ON } else { &OFF }).get_or_init(|| {
+    OFF.get_or_init(|| {
         let t = task("shelf.yaml");
         let p = plan_task_with(
             &t,
@@ -436,9 +439,8 @@ fn a_fatigue_only_plan_keeps_the_zones() {
 /// elbow height) leaves less excess, as the geometry says it must (the same reach, lower).
 #[test]
 fn what_would_change_it_moves_the_phase_forced_farthest_beyond_a_zone() {
-    let t = task("overhead_drilling.yaml");
     let opts = crate::common::held(false);
-    let p = plan_task_with(&t, opts).unwrap();
+    let (t, p) = crate::common::shipped_plan("overhead_drilling", false);
     let excess = |i: usize| -> f64 {
         p.summary.phases[i]
             .outside_zones
@@ -447,8 +449,8 @@ fn what_would_change_it_moves_the_phase_forced_farthest_beyond_a_zone() {
             .sum()
     };
     assert!(excess(0) > excess(1) && excess(1) > 0.0);
-    let a = posture_opt::assess::assess(&t, &p, 0.7);
-    let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
+    let a = posture_opt::assess::assess(t, p, 0.7);
+    let w = posture_opt::study::what_if::what_if(t, p, &a, opts, 0.7)
         .unwrap()
         .expect("a forced excess is a reason to move the work");
     let Change::MoveWork { phase, dz_m, .. } = &w.change else {

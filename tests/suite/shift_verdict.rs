@@ -334,3 +334,48 @@ fn the_fatigue_words_say_settled_only_when_the_capacity_has() {
         );
     }
 }
+
+/// ISO 11226 judges each body segment's posture on its own: a head bowed through three short
+/// phases in a row (2 + 2 + 4 s of a 10 s cycle, as an ergonomist's seated pick-and-place had it)
+/// is one static posture held 8 s, not acceptable with the neck flexed 30° against the trunk,
+/// although no phase alone lasts longer than 4 s. With the head upright in the middle phase the
+/// holds are 2 s and 4 s: no static head posture; without rest, the last phase's bowed head
+/// joins the first's across the cycle's end (4 + 2 s).
+#[test]
+fn a_posture_held_through_short_phases_is_static() {
+    let text = "name: three short phases\nworker: {sex: male, stature_m: 1.755, mass_kg: 78.0}\nphases:\n  - {name: reach, target_m: [0.40, -0.25, 1.00], duration_s: 2.0}\n  - {name: bring, target_m: [0.40, -0.10, 1.00], duration_s: 2.0}\n  - {name: place, target_m: [0.40, 0.0, 1.00], load_kg: 0.5, duration_s: 4.0}\nrest_s: 2.0\ncycles: 10\n";
+    let t = Task::from_yaml_str(text, Path::new("short_phases.yaml")).unwrap();
+    let p = plan_task_with(&t, held()).unwrap();
+    let a = assess(&t, &p, 0.7);
+    let judge = |t: &Task, neck_deg: [f64; 3]| {
+        let mut phases = a.phases.clone();
+        for (ph, neck) in phases.iter_mut().zip(neck_deg) {
+            let x = ph.angles.as_mut().expect("angles");
+            x.neck_flexion_deg = neck;
+            x.head_inclination_deg = neck;
+        }
+        let v = shift_verdict(t, &p, &a.meaning, &phases, &a.rest, None, None);
+        v.criterion("iso_11226").unwrap().clone()
+    };
+    let bowed = judge(&t, [30.0, 30.0, 30.0]);
+    assert_eq!(bowed.status, Status::Exceeded, "{}", bowed.words);
+    assert!(
+        bowed.words.contains(
+            "'reach', 'bring' and 'place': neck flexed 30° against the trunk (beyond 25°), held 8 s"
+        ),
+        "{}",
+        bowed.words
+    );
+    let split = judge(&t, [30.0, 0.0, 30.0]);
+    assert!(!split.words.contains("neck"), "{}", split.words);
+    let mut no_rest = t.clone();
+    no_rest.rest_s = 0.0;
+    let wrapped = judge(&no_rest, [30.0, 0.0, 30.0]);
+    assert!(
+        wrapped.words.contains(
+            "'place' and 'reach': neck flexed 30° against the trunk (beyond 25°), held 6 s"
+        ),
+        "{}",
+        wrapped.words
+    );
+}

@@ -164,7 +164,14 @@ fn ranking_tables(c: &Comparison) -> String {
                 o.rank.to_string(),
                 format!("<b>{}</b><br><small>{}</small>", esc(&o.task), esc(&o.file)),
                 esc(&verdict(o)),
-                o.lifting_index.map_or("—".into(), |x| num(x, 2)),
+                match o.lifting() {
+                    None => "—".into(),
+                    Some(Ok(x)) => num(x, 2),
+                    Some(Err(why)) => format!(
+                        "not defined<br><small>{}</small>",
+                        esc(&format!("outside the equation's limits: {why}"))
+                    ),
+                },
                 esc(o.posture_status.words()),
                 format!(
                     "{} ({}, at {})",

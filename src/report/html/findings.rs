@@ -765,16 +765,32 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
 /// "Letting the worker step … would lower fatigue per hour by 59 % (142.6 → 58.6 min/h)", or
 /// "… would keep every muscle group from giving out" when it ends an exhaustion.
 pub fn advice_sentence(w: &crate::study::what_if::WhatIf) -> String {
+    let lifting = crate::study::what_if::lifting_change(
+        w.before.lifting().as_ref(),
+        w.after.lifting().as_ref(),
+    );
+    if w.lowers_lifting_risk() {
+        use crate::assess::lifting::index_words;
+        return format!(
+            "<b>{} would bring NIOSH's lifting index from {} to {}</b> (fatigue per hour {:.1} → {:.1} min/h; see “What would change it”).",
+            capitalise(&change_words(&w.change)),
+            esc(&index_words(w.before.lifting().as_ref())),
+            esc(&index_words(w.after.lifting().as_ref())),
+            w.before.u_per_hour_min,
+            w.after.u_per_hour_min
+        );
+    }
+    let lifting = lifting.map_or(String::new(), |l| format!("; {}", esc(&l.words)));
     if w.ends_exhaustion() {
         return format!(
-            "<b>{} would keep every muscle group from giving out</b> (fatigue per hour {:.1} → {:.1} min/h, the first until a group gives out; see “What would change it”).",
+            "<b>{} would keep every muscle group from giving out</b> (fatigue per hour {:.1} → {:.1} min/h, the first until a group gives out{lifting}; see “What would change it”).",
             capitalise(&change_words(&w.change)),
             w.before.u_per_hour_min,
             w.after.u_per_hour_min
         );
     }
     format!(
-        "<b>{} would lower fatigue per hour by {:.0} %</b> ({:.1} → {:.1} min/h; see “What would change it”).",
+        "<b>{} would lower fatigue per hour by {:.0} %</b> ({:.1} → {:.1} min/h{lifting}; see “What would change it”).",
         capitalise(&change_words(&w.change)),
         100.0 * (1.0 - w.after.u_per_hour_min / w.before.u_per_hour_min),
         w.before.u_per_hour_min,
