@@ -73,15 +73,24 @@ pub fn index_words(index: Option<&Result<f64, String>>) -> String {
     }
 }
 
+/// A lifting index at the precision NIOSH reports it (two decimals: the Applications manual's
+/// worked examples): two indices that round alike are the same index, so that a difference the
+/// solver's last digits make (1.009045 against 1.009166, an asymmetry of 0.18° against 0.20°)
+/// decides no ranking.
+pub fn reported(index: f64) -> f64 {
+    (index * 100.0).round() / 100.0
+}
+
 /// The lifting index's risk class for ranking — 0: at most 1 (nearly all healthy workers), 1: at
 /// most 3 (an increased risk for some), 2: above 3 (many workers at elevated risk; Waters et al.
 /// 1994, Applications manual), 3: outside the equation's limits (no load is recommended) — and,
-/// above 1, the index itself (lower ranks better). `None` (no lifts declared) is class 0.
+/// above 1, the index itself as reported ([`reported`]; lower ranks better). `None` (no lifts
+/// declared) is class 0.
 pub fn risk_key(index: Option<&Result<f64, String>>) -> (u8, f64) {
-    match index {
+    match index.map(|i| i.as_ref().map(|x| reported(*x))) {
         Some(Err(_)) => (3, 0.0),
-        Some(Ok(x)) if *x > 3.0 => (2, *x),
-        Some(Ok(x)) if *x > 1.0 => (1, *x),
+        Some(Ok(x)) if x > 3.0 => (2, x),
+        Some(Ok(x)) if x > 1.0 => (1, x),
         _ => (0, 0.0),
     }
 }

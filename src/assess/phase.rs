@@ -116,9 +116,12 @@ pub fn describe(a: &BodyAngles) -> String {
     sideways(&mut parts, "bent", a.trunk_side_bend_deg, 5.0);
     if a.neck_flexion_deg.abs() >= 10.0 {
         parts.push(if a.neck_flexion_deg > 0.0 {
-            format!("head bowed {:.0}°", a.neck_flexion_deg)
+            format!("neck flexed {:.0}° against the trunk", a.neck_flexion_deg)
         } else {
-            format!("neck extended {:.0}°", -a.neck_flexion_deg)
+            format!(
+                "neck extended {:.0}° against the trunk",
+                -a.neck_flexion_deg
+            )
         });
     }
     sideways(&mut parts, "head turned", a.neck_twist_deg, 10.0);

@@ -850,7 +850,7 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             out(
                 high,
                 format!(
-                    "{}: {words} {:.0}° from the vertical (beyond 60°) {:.1} times a minute",
+                    "{}: {words} {:.0}° from the vertical (beyond 60°), one of {:.1} movements a minute beyond 60°",
                     h.names(task),
                     worst_deg(&h, phases, &angle),
                     h.per_min
@@ -863,7 +863,7 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
                 out(
                     false,
                     format!(
-                        "{}: {words} {worst:.0}° from the vertical (20–60°, conditionally acceptable) {:.1} times a minute",
+                        "{}: {words} {worst:.0}° from the vertical (20–60°, conditionally acceptable), one of {:.1} movements a minute beyond 20°",
                         h.names(task),
                         h.per_min
                     ),
@@ -876,7 +876,7 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             out(
                 h.per_min >= EN_HIGH_FREQUENCY_PER_MIN,
                 format!(
-                    "{}: {what} {:.0}° (beyond 10°) {:.1} times a minute",
+                    "{}: {what} {:.0}° (beyond 10°), one of {:.1} movements a minute beyond 10°",
                     h.names(task),
                     worst_deg(&h, phases, &angle),
                     h.per_min

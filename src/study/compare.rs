@@ -158,7 +158,7 @@ pub const SHARD_KIND: &str = "posture-opt compare shard";
 /// Most layouts in one comparison (split larger studies into shards).
 pub const MAX_LAYOUTS: usize = 1000;
 
-pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then NIOSH's lifting index where lifts are declared (at most 1 before at most 3 before above 3, and above 1 the lower index), then postures within ISO 11226 and EN 1005-4 (acceptable before conditionally acceptable before not acceptable), then L5/S1 compression within NIOSH's action limit (3400 N) before above it before above the maximum (6400 N), and above the action limit the lower compression, then the share strong enough (99 % of men and 75 % of women before 25 % of men before fewer, NIOSH 1981), then the shift verdict (acceptable before caution before exceeded: the fatigue model, Jonsson's load levels, Rohmert's rest), then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
+pub const RANKING_RULE: &str = "feasible first (targets reached, no collision, balance kept), then no load above strength, then no exhaustion within the task (later exhaustion better), then NIOSH's lifting index where lifts are declared (at most 1 before at most 3 before above 3 before not defined (a lift outside the equation's limits), and above 1 the lower index, as reported to two decimals), then postures within ISO 11226 and EN 1005-4 (acceptable before conditionally acceptable before not acceptable), then L5/S1 compression within NIOSH's action limit (3400 N) before above it before above the maximum (6400 N), and above the action limit the lower compression, then the share strong enough (99 % of men and 75 % of women before 25 % of men before fewer, NIOSH 1981), then the shift verdict (acceptable before caution before exceeded: the fatigue model, Jonsson's load levels, Rohmert's rest), then longer time to exhaustion at this pace, then higher lowest capacity at any time, then lower U per hour of simulated work, then lower worst RULA";
 
 /// A planned layout: its plan and assessment (for reports).
 pub struct Planned {
@@ -955,7 +955,7 @@ pub fn comparison_table(c: &Comparison) -> String {
     row(
         "time to exhaustion at this pace",
         &|o| match o.minutes_to_exhaustion {
-            Some(m) => format!("{:.1} h", m / 60.0),
+            Some(m) => crate::assess::meaning::time_words(60.0 * m),
             None => no_exhaustion_words(&o.exhaustion_verdict, o.minutes_followed),
         },
     );

@@ -30,6 +30,12 @@ use serde::Serialize;
 /// Largest move of the target \[m\].
 pub const MAX_MOVE_M: f64 = 0.10;
 
+/// Largest horizontal move of the work toward the normal working area \[m\]: ASSUMPTION, about
+/// a forearm's length — enough to bring a bin from the edge of the maximum reach into the normal
+/// area (Barnes 1963: about 0.35–0.40 m from the elbow to the edge of the maximum area), not a
+/// new workstation.
+pub const MAX_CLOSER_M: f64 = 0.30;
+
 /// A target this close to elbow height \[m\] is left where it is.
 pub const NEAR_ELBOW_M: f64 = 0.05;
 
@@ -67,6 +73,8 @@ pub struct Figures {
     pub exhaustion_s: Option<f64>,
     /// Steps per cycle (the phases' steps from the state before each).
     pub steps_per_cycle: u32,
+    /// The worst phase's RULA grand score.
+    pub rula_max: Option<i32>,
     /// The postures' excess beyond ISO 11226 / EN 1005-4's acceptable zones, summed over the
     /// cycle's phases and zones \[deg\] (`phases[].outside_zones`).
     pub zone_excess_deg: f64,
@@ -88,18 +96,20 @@ pub fn relative_change(a: f64, b: f64) -> String {
 
 /// A change of the deciding lifting index in words ("NIOSH lifting index not defined (outside
 /// the equation's limits) → 0.93"), and whether it is for the worse: a higher risk class
-/// ([`crate::assess::lifting::risk_key`]) or, both defined, a higher index. `None` when neither
+/// ([`crate::assess::lifting::risk_key`]) or, both defined, a higher index as reported (two
+/// decimals). `None` when neither
 /// side declares a lift.
 pub fn lifting_change(
     before: Option<&Result<f64, String>>,
     after: Option<&Result<f64, String>>,
 ) -> Option<LiftingChange> {
-    use crate::assess::lifting::{index_words, risk_key};
+    use crate::assess::lifting::{index_words, reported, risk_key};
     if before.is_none() && after.is_none() {
         return None;
     }
+    // as NIOSH reports the index: a change in its third decimal is no change
     let worse = match (before, after) {
-        (Some(Ok(b)), Some(Ok(a))) => *a > *b + 1e-9,
+        (Some(Ok(b)), Some(Ok(a))) => reported(*a) > reported(*b),
         _ => risk_key(after).0 > risk_key(before).0,
     };
     Some(LiftingChange {
@@ -165,6 +175,11 @@ impl Figures {
                 self.zone_excess_deg, after.zone_excess_deg
             ));
         }
+        if let (Some(a), Some(b)) = (self.rula_max, after.rula_max)
+            && a != b
+        {
+            v.push(format!("worst RULA {a} → {b}"));
+        }
         v.push(format!(
             "fatigue per hour {:.1} → {:.1} min/h ({})",
             self.u_per_hour_min,
@@ -212,6 +227,17 @@ pub enum Change {
         elbow_height_m: f64,
         /// The worker sits: the elbow height is the seated one.
         seated: bool,
+    },
+    /// A phase's work (and every phase doing the same work) moved horizontally toward the
+    /// normal working area in front of the worker.
+    BringWorkCloser {
+        phase: String,
+        /// Horizontal move of the phase's hand targets (and held object) \[m\], world x and y.
+        dx_m: f64,
+        dy_m: f64,
+        /// The work's horizontal distance from the normal working area's centre before the
+        /// move \[m\].
+        beyond_m: f64,
     },
     /// The feet, fixed in the task, placed by the planner within a square standing area
     /// centred on the task's stance.
@@ -312,6 +338,7 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
             .map(|f| f.steps)
             .sum(),
         zone_excess_deg: zone_excess_deg(plan),
+        rula_max: a.rula_max,
     }
 }
 
@@ -396,23 +423,107 @@ pub fn what_if(
         return Ok(None);
     }
     let dz = (elbow - z).clamp(-MAX_MOVE_M, MAX_MOVE_M);
-    let mut changed = task.clone();
-    // every phase doing the same work moves with it (they share one place)
-    for q in &mut changed.phases {
-        if q.same_work(ph) {
-            for t in q.targets_m.iter_mut().flatten() {
-                *t += Vector3::new(0.0, 0.0, dz);
-            }
-            if let Some(o) = q.object.as_mut() {
-                o.center_m[2] += dz;
-            }
-        }
-    }
+    let changed = work_moved(task, p, Vector3::new(0.0, 0.0, dz));
     let change = Change::MoveWork {
         phase: ph.name.clone(),
         dz_m: dz,
         elbow_height_m: elbow,
         seated,
+    };
+    plan_changed(change, &changed, plan, a, opts, floor).map(Some)
+}
+
+/// Where each hand's normal working area is centred, in the plan's rest posture (upper arms
+/// hanging): in front of the elbow, horizontally, by the elbow's distance from the grip — the
+/// arc the hand sweeps with the elbow at the side (Barnes 1963, Motion and time study: the
+/// "normal area" of each hand; Squires 1956). `None` for a body without the elbow and hand links.
+fn normal_area_m(task: &Task, plan: &Plan, h: usize) -> Option<Vector3<f64>> {
+    let m = &task.model;
+    let find = |name: &str| m.links.iter().position(|l| l.name == name);
+    let elbow = find(["r_forearm", "l_forearm"][h])?;
+    let pelvis = find("pelvis")?;
+    let (grip, _) = task.hand_links[h].clone()?;
+    let q = &plan.summary.rest_posture_rad;
+    if q.len() != m.nq() {
+        return None;
+    }
+    let mut data = crate::body::StaticsData::new(m, 0);
+    crate::body::forward_kinematics(m, &mut data, q);
+    let e = data.link_point(m, elbow, &Vector3::zeros());
+    let g = data.link_point(m, grip, &Vector3::zeros());
+    let (r, _) = data.link_pose(m, pelvis);
+    let forward = Vector3::new(r[(0, 0)], r[(1, 0)], 0.0).try_normalize(1e-9)?;
+    Some(e + forward * (g - e).norm())
+}
+
+/// The task with phase `p`'s work moved by `step`: its hands' targets and held object, and those
+/// of every phase doing the same work (they share one place). The obstacles stay.
+fn work_moved(task: &Task, p: usize, step: Vector3<f64>) -> Task {
+    let mut changed = task.clone();
+    let ph = &task.phases[p];
+    for q in &mut changed.phases {
+        if q.same_work(ph) {
+            for t in q.targets_m.iter_mut().flatten() {
+                *t += step;
+            }
+            if let Some(o) = q.object.as_mut() {
+                for (c, d) in o.center_m.iter_mut().zip(step.iter()) {
+                    *c += d;
+                }
+            }
+        }
+    }
+    changed
+}
+
+/// The horizontal move from phase `p`'s work (its hand targets' mean) to the centre of its
+/// hands' normal working areas ([`normal_area_m`]); `None` for a phase without targets or a body
+/// without those links.
+fn toward_normal_area(task: &Task, plan: &Plan, p: usize) -> Option<Vector3<f64>> {
+    let ph = &task.phases[p];
+    let hands: Vec<usize> = (0..2).filter(|&h| ph.targets_m[h].is_some()).collect();
+    if hands.is_empty() {
+        return None;
+    }
+    let mut d = Vector3::zeros();
+    for &h in &hands {
+        d += normal_area_m(task, plan, h)? - ph.targets_m[h]?;
+    }
+    d /= hands.len() as f64;
+    d.z = 0.0;
+    Some(d)
+}
+
+/// Moves the work that lies farthest from the normal working area in front of the worker
+/// (horizontally, [`toward_normal_area`]; every phase doing the same work with it) to within
+/// [`NEAR_ELBOW_M`] of that area's centre, by at most [`MAX_CLOSER_M`], plans the changed task
+/// with `opts` (without baselines) and compares. `None` when every phase's work lies within
+/// [`NEAR_ELBOW_M`] of it. The obstacles stay: the work moves, not the surface or bin it came
+/// from (a change that then collides is not advised).
+pub fn bring_work_closer(
+    task: &Task,
+    plan: &Plan,
+    a: &Assessment,
+    opts: PlanOptions,
+    floor: f64,
+) -> Result<Option<WhatIf>, PlanError> {
+    let farthest = (0..task.phases.len())
+        .filter_map(|p| toward_normal_area(task, plan, p).map(|d| (p, d)))
+        .max_by(|x, y| x.1.norm().total_cmp(&y.1.norm()));
+    let Some((p, d)) = farthest else {
+        return Ok(None);
+    };
+    let beyond_m = d.norm();
+    if beyond_m < NEAR_ELBOW_M {
+        return Ok(None);
+    }
+    let step = d * ((beyond_m - NEAR_ELBOW_M).min(MAX_CLOSER_M) / beyond_m);
+    let changed = work_moved(task, p, step);
+    let change = Change::BringWorkCloser {
+        phase: task.phases[p].name.clone(),
+        dx_m: step.x,
+        dy_m: step.y,
+        beyond_m,
     };
     plan_changed(change, &changed, plan, a, opts, floor).map(Some)
 }
@@ -500,6 +611,7 @@ pub fn what_ifs(
 ) -> Result<Vec<WhatIf>, PlanError> {
     let mut v: Vec<WhatIf> = [
         what_if(task, plan, a, opts, floor)?,
+        bring_work_closer(task, plan, a, opts, floor)?,
         with_standing_area(task, plan, a, opts, floor)?,
     ]
     .into_iter()
@@ -547,6 +659,7 @@ mod tests {
             exhaustion_s: None,
             steps_per_cycle: 0,
             zone_excess_deg: 0.0,
+            rula_max: None,
         }
     }
 
@@ -690,6 +803,10 @@ mod tests {
         higher.before.lifting_index = Some(0.93);
         higher.after.lifting_index = Some(1.2);
         assert!(!higher.advised());
+        // a change in the index's third decimal is no change (NIOSH reports two)
+        let (b, a) = (Ok(1.009045), Ok(1.009166));
+        assert!(!lifting_change(Some(&b), Some(&a)).unwrap().worse);
+        assert!(lifting_change(Some(&b), Some(&Ok(1.02))).unwrap().worse);
         // both within the same class: fatigue decides whether it is advised
         let mut same = what_if(0.3, 60.0, false);
         same.before.lifting_index = Some(1.4);

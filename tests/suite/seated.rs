@@ -289,3 +289,67 @@ fn a_seated_workers_work_moves_toward_the_seated_elbow_height() {
         "the work moves down toward the seated elbow: {dz_m}"
     );
 }
+
+/// "What would change it" brings the work that lies farthest from the normal working area toward
+/// it (an ergonomist's seated side-bin pick: the bin 0.45 m to the right of the seat centre, the
+/// head turned 45° to reach into it). The normal area of a hand is the arc it sweeps with the
+/// elbow at the side (Barnes 1963): checked here from the rest posture's own elbow and grip, the
+/// chosen work is the bin's, moved horizontally toward the right hand's area until 5 cm from
+/// its centre (at most 0.30 m), its height kept, the bin's lateral offset smaller.
+#[test]
+fn the_work_farthest_from_the_normal_area_is_brought_closer() {
+    use posture_opt::study::what_if::{Change, MAX_CLOSER_M, NEAR_ELBOW_M, bring_work_closer};
+    let text = "name: seated side-bin pick\nworker: {sex: female, stature_m: 1.65, mass_kg: 65.0}\nseat: {height_m: 0.43, position_m: [-0.35, 0.0]}\nstance: {width_m: 0.22, forward_m: 0.05}\nworkstation:\n  obstacles:\n    - {name: table, box: {size_m: [0.60, 1.40, 0.04]}, position_m: [0.15, 0.0, 0.70]}\n    - {name: bin, box: {size_m: [0.20, 0.25, 0.12]}, position_m: [-0.05, -0.45, 0.78]}\n    - {name: floor, plane: {normal: [0, 0, 1]}, position_m: [0, 0, 0]}\nphases:\n  - {name: reach into bin, target_m: [-0.05, -0.45, 0.88], duration_s: 2.0}\n  - {name: bring part, target_m: [0.05, -0.15, 0.82], load_kg: 0.5, duration_s: 2.0}\n  - {name: place in front, target_m: [0.10, 0.0, 0.78], load_kg: 0.5, duration_s: 4.0}\nrest_s: 2.0\ncycles: 30\n";
+    let t = task_of(text).unwrap();
+    let p = plan_task_with(&t, crate::common::held(false)).unwrap();
+    // the right hand's normal area, from the rest posture
+    let m = &t.model;
+    let mut d = posture_opt::body::StaticsData::new(m, 0);
+    posture_opt::body::forward_kinematics(m, &mut d, &p.summary.rest_posture_rad);
+    let at = |name: &str| {
+        let l = m.links.iter().position(|x| x.name == name).unwrap();
+        d.link_point(m, l, &Vector3::zeros())
+    };
+    let (elbow, grip) = (at("r_forearm"), at("r_hand_grip"));
+    let pelvis = m.links.iter().position(|x| x.name == "pelvis").unwrap();
+    let (r, _) = d.link_pose(m, pelvis);
+    let forward = Vector3::new(r[(0, 0)], r[(1, 0)], 0.0).normalize();
+    assert!(forward.x > 0.95, "the seated worker faces +x: {forward:?}");
+    let centre = elbow + forward * (grip - elbow).norm();
+    let away = |p: usize| {
+        let w = t.phases[p].targets_m[0].unwrap();
+        (centre - w).xy().norm()
+    };
+    assert!(away(0) > away(1) && away(0) > away(2));
+    let a = posture_opt::assess::assess(&t, &p, 0.7);
+    let w = bring_work_closer(&t, &p, &a, crate::common::held(false), 0.7)
+        .unwrap()
+        .expect("the bin lies beyond the normal area");
+    let Change::BringWorkCloser {
+        phase,
+        dx_m,
+        dy_m,
+        beyond_m,
+    } = &w.change
+    else {
+        panic!("{:?}", w.change)
+    };
+    assert_eq!(phase, "reach into bin");
+    assert!(
+        (beyond_m - away(0)).abs() < 1e-9,
+        "{beyond_m} vs {}",
+        away(0)
+    );
+    let step = Vector3::new(*dx_m, *dy_m, 0.0);
+    let want = (away(0) - NEAR_ELBOW_M).min(MAX_CLOSER_M);
+    assert!(
+        (step.norm() - want).abs() < 1e-9,
+        "{} vs {want}",
+        step.norm()
+    );
+    let dir = (centre - t.phases[0].targets_m[0].unwrap())
+        .xy()
+        .normalize();
+    assert!((step.xy().normalize() - dir).norm() < 1e-9);
+    assert!(dy_m > &0.0, "the bin comes in from the right side: {dy_m}");
+}

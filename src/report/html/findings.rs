@@ -74,14 +74,19 @@ pub fn verdict(plan: &Plan, a: &Assessment) -> Finding {
         }
         return Finding::new(Level::Bad, t);
     }
-    let level = match v.status {
-        Status::NotApplicable | Status::Acceptable => Level::Ok,
-        Status::Caution | Status::NotDetermined => Level::Warn,
-        Status::Exceeded => Level::Bad,
-    };
+    let level = level_of(v.status);
     let head = capitalise(&esc(&v.headline));
     // the fatigue model's own words are in the criteria list; the box adds the capacity figures
     Finding::new(level, format!("{head}. {left}"))
+}
+
+/// A criterion's status as a finding's level.
+fn level_of(status: Status) -> Level {
+    match status {
+        Status::NotApplicable | Status::Acceptable => Level::Ok,
+        Status::Caution | Status::NotDetermined => Level::Warn,
+        Status::Exceeded => Level::Bad,
+    }
 }
 
 /// The shift criteria one by one, as the verdict weighed them.
@@ -100,13 +105,8 @@ pub fn criteria_finding(a: &Assessment) -> Finding {
             )
         })
         .collect();
-    let level = match a.verdict.status {
-        Status::NotApplicable | Status::Acceptable => Level::Ok,
-        Status::Caution | Status::NotDetermined => Level::Warn,
-        Status::Exceeded => Level::Bad,
-    };
     Finding::new(
-        level,
+        level_of(a.verdict.status),
         format!(
             "Shift criteria (the verdict is the worst of them; “indefinitely” only when all are acceptable):<ul>{}</ul>",
             items.join("")
@@ -292,17 +292,15 @@ pub fn findings(
             .iter()
             .flat_map(|p| p.capable.iter().map(move |c| (c, &p.phase)))
             .min_by(|x, y| x.0.women.min(x.0.men).total_cmp(&y.0.women.min(y.0.men)));
-        let lw = men.min(women);
+        // graded as the shift verdict grades it (NIOSH 1981's design limits)
+        let level = a
+            .verdict
+            .criterion("strength")
+            .map_or(Level::Ok, |c| level_of(c.status));
         f.push(Finding::new(
-            if lw < 0.5 {
-                Level::Bad
-            } else if lw < 0.75 {
-                Level::Warn
-            } else {
-                Level::Ok
-            },
+            level,
             format!(
-                "Strong enough for every load of the task: {} of women, {} of men{}.",
+                "Strong enough for every load of the task: {} of women, {} of men (the design limit: 99 % of men and 75 % of women){}.",
                 pct(women),
                 pct(men),
                 least
@@ -752,6 +750,17 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
             if *dz_m > 0.0 { "up" } else { "down" },
             if *seated { "seated " } else { "" },
             super::fmt::unit(*elbow_height_m, 2, "m")
+        ),
+        Change::BringWorkCloser {
+            phase,
+            dx_m,
+            dy_m,
+            beyond_m,
+        } => format!(
+            "placing the work of {} {} closer, toward the normal working area in front of the worker (the hand's sweep with the elbow at the side, centred {} from the work)",
+            q(phase),
+            mm(dx_m.hypot(*dy_m)),
+            mm(*beyond_m)
         ),
         Change::StandingArea { half_side_m } => format!(
             "letting the worker step and turn within {} × {} of floor around the stance (the task fixes the feet)",
