@@ -523,6 +523,11 @@ pub struct LiftResult {
     pub origin: PointResult,
     /// RWL and LI at the destination, when control at the destination is required.
     pub destination: Option<PointResult>,
+    /// The destination's H \[cm\] when control there is not declared (so the destination is not
+    /// assessed) and H lies beyond the equation's 63 cm (HM would be 0): placing a load that far
+    /// out usually needs control (Waters et al. 1994, p. 11: "significant control … at the
+    /// destination"), so the report warns. `None` otherwise.
+    pub uncontrolled_destination_h_cm: Option<f64>,
     /// End with the lower RWL, which governs the task (origin on a tie).
     pub governing: Point,
     /// RWL of the task: the lower of origin and destination \[kg\].
@@ -674,6 +679,9 @@ pub fn assess_lift(l: &Lift) -> Result<LiftResult, NioshError> {
     } else {
         None
     };
+    let uncontrolled_destination_h_cm = (!l.control_at_destination
+        && l.destination.h_m * k.len_per_m > k.h_max + LIMIT_EPS)
+        .then_some(l.destination.h_m * 100.0);
     let (governing, gov) = match destination {
         Some(dest) if dest.rwl_kg < origin.rwl_kg => (Point::Destination, dest),
         _ => (Point::Origin, origin),
@@ -691,6 +699,7 @@ pub fn assess_lift(l: &Lift) -> Result<LiftResult, NioshError> {
         control_at_destination: l.control_at_destination,
         origin,
         destination,
+        uncontrolled_destination_h_cm,
         governing,
         rwl_kg: gov.rwl_kg,
         lifting_index: gov.lifting_index,

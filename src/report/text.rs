@@ -77,6 +77,11 @@ pub fn lift_lines(r: &crate::assess::niosh::LiftResult) -> Vec<String> {
         r.rwl_kg,
         li(r.lifting_index, governing)
     )];
+    if let Some(h) = r.uncontrolled_destination_h_cm {
+        v.push(format!(
+            "  the destination is not assessed (no control declared there), but its H is {h:.1} cm, beyond 63 cm (HM = 0): where placing it needs control, declare control_at_destination"
+        ));
+    }
     if let Some(d) = &r.destination {
         for (p, x) in [(Point::Origin, &r.origin), (Point::Destination, d)] {
             v.push(format!(

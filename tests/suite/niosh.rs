@@ -821,6 +821,24 @@ fn a_lift_beyond_the_equations_range_says_why() {
     assert!(risk_key(Some(&Ok(5.0))) > risk_key(Some(&Ok(1.5))));
     assert!(risk_key(Some(&Ok(1.5))) > risk_key(Some(&Ok(0.9))));
     assert_eq!(risk_key(Some(&Ok(0.9))), risk_key(None));
+    // the same lift without control at the destination: only the origin is assessed, and the
+    // destination's H beyond 63 cm is said (an ergonomist's trial found it silent)
+    l.control_at_destination = false;
+    let r = assess_lift(&l).unwrap();
+    assert_eq!(r.governing, Point::Origin);
+    assert!(r.destination.is_none());
+    assert_abs_diff_eq!(
+        r.uncontrolled_destination_h_cm.unwrap(),
+        66.5,
+        epsilon = 1e-9
+    );
+    let lines = posture_opt::report::text::lift_lines(&r);
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    assert!(
+        lines[1].contains("its H is 66.5 cm, beyond 63 cm")
+            && lines[1].contains("control_at_destination"),
+        "{lines:?}"
+    );
     // within range: a number, and one line without control at the destination
     let lines = posture_opt::report::text::lift_lines(&assess_lift(&ideal()).unwrap());
     assert_eq!(

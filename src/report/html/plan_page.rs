@@ -675,6 +675,21 @@ fn lifting_section(a: &Assessment) -> String {
                     undefined.join("; ")
                 );
             }
+            let far: Vec<String> = l
+                .lifts
+                .iter()
+                .filter_map(|r| {
+                    r.uncontrolled_destination_h_cm
+                        .map(|h| format!("{} (H {})", esc(&r.name), unit(h, 1, "cm")))
+                })
+                .collect();
+            if !far.is_empty() {
+                let _ = write!(
+                    o,
+                    "<p>Destination not assessed (no control declared there), but beyond the equation's 63 cm of horizontal reach (HM = 0): {}. Where placing the load needs control, declare <code>control_at_destination</code>.</p>",
+                    far.join("; ")
+                );
+            }
             if let Some(c) = l.composite.as_ref().and_then(|c| c.cli) {
                 let _ = write!(o, "<p>Composite lifting index: <b>{}</b>.</p>", num(c, 2));
             }

@@ -362,6 +362,7 @@ pub const NULLABLE_KEYS: &[&str] = &[
     "lifting",
     "lifting_index",
     "lifting_outside_limits",
+    "uncontrolled_destination_h_cm",
     "low_back",
     "max_group",
     "max_load_kg",
