@@ -63,6 +63,19 @@ impl Lifting {
     }
 }
 
+/// A deciding index from the two fields a document stores it in (`lifting_index`, null when not
+/// defined; `lifting_outside_limits`, why not).
+pub fn from_fields(
+    index: Option<f64>,
+    outside_limits: &Option<String>,
+) -> Option<Result<f64, String>> {
+    match (outside_limits, index) {
+        (Some(why), _) => Some(Err(why.clone())),
+        (None, Some(x)) => Some(Ok(x)),
+        (None, None) => None,
+    }
+}
+
 /// A deciding index in words: "1.07", "not defined (outside the equation's limits)", or "none"
 /// (no lifts declared).
 pub fn index_words(index: Option<&Result<f64, String>>) -> String {

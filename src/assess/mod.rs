@@ -49,6 +49,17 @@ pub struct Assessment {
 }
 
 impl Assessment {
+    /// NIOSH's lifting index that decides the task, or why it is not defined
+    /// ([`lifting::Lifting::deciding_index`]); `None` without declared lifts (or when the lifts
+    /// could not be assessed).
+    pub fn lifting_index(&self) -> Option<Result<f64, String>> {
+        self.lifting
+            .as_ref()?
+            .as_ref()
+            .ok()
+            .map(|l| l.deciding_index())
+    }
+
     /// Whether Rohmert's rest allowance applies: some posture is held long enough to be static
     /// (the verdict's Rohmert criterion is not "not applicable"). Every report words the
     /// allowance from this.

@@ -229,8 +229,8 @@ pub fn outcome(
         not_determined: a.verdict.not_determined.clone(),
         shift_status: a.verdict.status,
         shift_verdict: a.verdict.headline.clone(),
-        lifting_index: lifting(a).and_then(Result::ok),
-        lifting_outside_limits: lifting(a).and_then(Result::err),
+        lifting_index: a.lifting_index().and_then(Result::ok),
+        lifting_outside_limits: a.lifting_index().and_then(Result::err),
         posture_status: posture.map_or(crate::assess::verdict::Status::Acceptable, |c| c.status),
         posture_findings: posture.map_or(String::new(), |c| c.words.clone()),
         min_clearance_m: if min_clearance.is_finite() {
@@ -270,24 +270,10 @@ pub fn outcome(
     }
 }
 
-/// The lifting index that decides a plan's layout, or why it is not defined; `None` without
-/// declared lifts (see [`crate::assess::lifting::Lifting::deciding_index`]).
-fn lifting(a: &Assessment) -> Option<Result<f64, String>> {
-    a.lifting
-        .as_ref()?
-        .as_ref()
-        .ok()
-        .map(|l| l.deciding_index())
-}
-
 impl LayoutOutcome {
     /// The deciding lifting index, or why it is not defined; `None` without declared lifts.
     pub fn lifting(&self) -> Option<Result<f64, String>> {
-        match (&self.lifting_outside_limits, self.lifting_index) {
-            (Some(why), _) => Some(Err(why.clone())),
-            (None, Some(x)) => Some(Ok(x)),
-            (None, None) => None,
-        }
+        crate::assess::lifting::from_fields(self.lifting_index, &self.lifting_outside_limits)
     }
 }
 

@@ -137,11 +137,7 @@ impl Figures {
 
     /// The deciding lifting index, or why it is not defined; `None` without declared lifts.
     pub fn lifting(&self) -> Option<Result<f64, String>> {
-        match (&self.lifting_outside_limits, self.lifting_index) {
-            (Some(why), _) => Some(Err(why.clone())),
-            (None, Some(x)) => Some(Ok(x)),
-            (None, None) => None,
-        }
+        crate::assess::lifting::from_fields(self.lifting_index, &self.lifting_outside_limits)
     }
 
     /// The lifting index's risk class ([`crate::assess::lifting::risk_key`]).
@@ -314,11 +310,7 @@ fn not_converged(plan: &Plan) -> Vec<String> {
 
 fn figures(plan: &Plan, a: &Assessment) -> Figures {
     let s = &plan.summary;
-    let lifting = a
-        .lifting
-        .as_ref()
-        .and_then(|l| l.as_ref().ok())
-        .map(|l| l.deciding_index());
+    let lifting = a.lifting_index();
     Figures {
         lifting_index: lifting.clone().and_then(Result::ok),
         lifting_outside_limits: lifting.and_then(Result::err),
