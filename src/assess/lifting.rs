@@ -94,6 +94,17 @@ pub fn reported(index: f64) -> f64 {
     (index * 100.0).round() / 100.0
 }
 
+/// Where H and A are measured from, in words: the lifting index follows the feet, so a reader
+/// comparing it with a field measurement needs to know whose feet (`None` without a stance).
+pub fn stance_words(task: &Task) -> Option<&'static str> {
+    let st = task.stance.as_ref()?;
+    Some(if st.placement.is_some() {
+        "H and A are measured from the ankles where the plan places the feet in each phase (the worker steps and turns within the task's standing area); with the feet fixed they would differ"
+    } else {
+        "H and A are measured from the ankles where the task fixes the feet"
+    })
+}
+
 /// The lifting index's risk class for ranking — 0: at most 1 (nearly all healthy workers), 1: at
 /// most 3 (an increased risk for some), 2: above 3 (many workers at elevated risk; Waters et al.
 /// 1994, Applications manual), 3: outside the equation's limits (no load is recommended) — and,

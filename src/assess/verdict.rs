@@ -27,12 +27,12 @@
 //!    acceptable, 20–60° only for its maximum acceptable holding time, beyond 60° or leaning
 //!    back not acceptable; trunk lateral bending or axial rotation beyond 10° not acceptable;
 //!    upper-arm elevation 0–20° acceptable, 20–60° only for its holding time, beyond 60° not
-//!    acceptable (no arm support is modelled); head inclination beyond 85° or backward not
-//!    acceptable, neck flexion (head against trunk) beyond 25° not acceptable, head inclination
-//!    25–85° a caution (its holding-time curve is not applied). The holding times are straight
-//!    lines between the end points [`ISO_TRUNK_HOLD_MIN`] and [`ISO_ARM_HOLD_MIN`], read from the
-//!    standard's figures as secondary sources reproduce them; the original figures were not
-//!    available to check here. Backward lean and head extension are judged beyond
+//!    acceptable (no arm support is modelled); head inclination 0–25° acceptable, 25–85° only for
+//!    its holding time, beyond 85° or backward not acceptable; neck flexion (head against trunk)
+//!    beyond 25° not acceptable. The holding times are straight lines between the end points
+//!    [`ISO_TRUNK_HOLD`], [`ISO_ARM_HOLD`] and [`ISO_HEAD_HOLD`], read from the standard's figures
+//!    as secondary sources reproduce them; the original figures were not available to check
+//!    here. Backward lean and head extension are judged beyond
 //!    [`ISO_BACKWARD_TOLERANCE_DEG`] (ASSUMPTION: less is not visible to an observer).
 //! 4. **EN 1005-4** (postures and movements in relation to machinery) for the segments' holds of
 //!    4 s or less (postures in movement): trunk lateral bending or axial rotation beyond 10°, or an
@@ -138,22 +138,60 @@ pub const JONSSON_STATIC: (f64, f64) = (0.02, 0.05);
 pub const JONSSON_MEAN: (f64, f64) = (0.10, 0.14);
 pub const JONSSON_PEAK: (f64, f64) = (0.50, 0.70);
 /// ISO 11226 Figure 3 (upper-arm elevation).
-pub use crate::plan::zones::ARM_HOLD_MIN as ISO_ARM_HOLD_MIN;
+pub use crate::plan::zones::ARM_HOLD as ISO_ARM_HOLD;
+/// ISO 11226 (head inclination).
+pub use crate::plan::zones::HEAD_HOLD as ISO_HEAD_HOLD;
+pub use crate::plan::zones::HoldingTime;
 pub use crate::plan::zones::ISO_BACKWARD_TOLERANCE_DEG;
 /// ISO 11226 / EN 1005-4: a posture held longer than this is static \[s\].
 pub use crate::plan::zones::STATIC_HOLD_S as ISO_STATIC_S;
 /// ISO 11226 Figure 2 (trunk inclination).
-pub use crate::plan::zones::TRUNK_HOLD_MIN as ISO_TRUNK_HOLD_MIN;
+pub use crate::plan::zones::TRUNK_HOLD as ISO_TRUNK_HOLD;
 
 const JONSSON_SOURCE: &str = "Jonsson B. (1982) J Hum Ergol 11:73-88";
 const ISO_SOURCE: &str = "ISO 11226:2000; EN 1005-4:2005";
 const EN_SOURCE: &str = "EN 1005-4:2005+A1:2008 (postures in movement)";
+/// The force on the hands from which a phase exerts more than the "no or minimal external force"
+/// ISO 11226 and EN 1005-4 cover \[N\]: the weight of 3 kg, the mass from which ISO 11228-1
+/// treats handling an object as lifting. ASSUMPTION: neither standard puts a figure on
+/// "minimal".
+pub const MINIMAL_FORCE_N: f64 = 3.0 * 9.80665;
+
+/// What a pass of ISO 11226 or EN 1005-4 does not cover: the phases whose hands exert more than
+/// the minimal external force. Their postures are still judged (a posture not acceptable without
+/// force is not acceptable with it), but the standards' acceptance says nothing of the force;
+/// NIOSH's lifting equation and the load criteria judge that. `None` when every phase is within.
+fn beyond_minimal_force(task: &Task) -> Option<String> {
+    let forceful: Vec<(&str, f64)> = task
+        .phases
+        .iter()
+        .map(|p| (p.name.as_str(), p.total_force_n().norm()))
+        .filter(|(_, f)| *f >= MINIMAL_FORCE_N)
+        .collect();
+    let (_, most) = forceful
+        .iter()
+        .copied()
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let names: Vec<String> = forceful.iter().map(|(n, _)| format!("'{n}'")).collect();
+    Some(format!(
+        "{} exert{} up to {most:.0} N on the hands, beyond the minimal external force this standard covers (the load criteria judge it)",
+        names.join(", "),
+        if names.len() == 1 { "s" } else { "" }
+    ))
+}
+
+/// A pass's words with what it does not cover ([`beyond_minimal_force`]).
+fn within_scope(task: &Task, status: Status, words: String) -> String {
+    match (status, beyond_minimal_force(task)) {
+        (Status::Acceptable | Status::Caution, Some(note)) => format!("{words}; {note}"),
+        _ => words,
+    }
+}
+
 /// EN 1005-4: a movement repeated this often or more per minute is "high frequency".
 pub const EN_HIGH_FREQUENCY_PER_MIN: f64 = 2.0;
 const ROHMERT_SOURCE: &str = "Rohmert W. (1973) Applied Ergonomics 4(3):158-162";
 const MODEL_SOURCE: &str = "Ma et al. (2009) with recovery";
-
-pub use crate::plan::zones::holding_time_s as iso_holding_time_s;
 
 /// A time distribution's `p`-quantile: the smallest level at or below which the load stays for
 /// at least the share `p` of the time. `levels`: (load, duration) pairs.
@@ -292,7 +330,7 @@ pub fn shift_verdict(
     if !unproven.is_empty() {
         let not_determined: Vec<String> = unproven.into_iter().chain(unconverged).collect();
         if let Some(g) = geometric {
-            return geometric_verdict(g, not_determined, criteria);
+            return geometric_verdict(task, g, not_determined, criteria);
         }
         return ShiftVerdict {
             status: Status::NotDetermined,
@@ -335,7 +373,7 @@ pub fn shift_verdict(
     if !unconverged.is_empty() && worst > Status::Acceptable {
         let b = binding.expect("a criterion is worse than acceptable");
         if let Some(g) = geometric {
-            return geometric_verdict(g, unconverged, criteria);
+            return geometric_verdict(task, g, unconverged, criteria);
         }
         return ShiftVerdict {
             status: Status::NotDetermined,
@@ -362,7 +400,8 @@ pub fn shift_verdict(
             short(&b.words)
         ),
         (Status::Exceeded, Some(b)) => format!(
-            "not acceptable over the shift: {} — {}{also}",
+            "not acceptable over the task's {}: {} — {}{also}",
+            crate::assess::meaning::time_words(task.duration_s()),
             b.name,
             short(&b.words)
         ),
@@ -390,6 +429,7 @@ pub fn shift_verdict(
 /// The verdict when a criterion the postures do not change is exceeded while the rest are not
 /// determined: "not acceptable" by that criterion, the rest named as open.
 fn geometric_verdict(
+    task: &Task,
     (id, words): (&'static str, String),
     not_determined: Vec<String>,
     criteria: Vec<Criterion>,
@@ -398,7 +438,8 @@ fn geometric_verdict(
         status: Status::Exceeded,
         binding: Some(id),
         headline: format!(
-            "not acceptable over the shift: {words}; the posture-dependent criteria are not determined: {}",
+            "not acceptable over the task's {}: {words}; the posture-dependent criteria are not determined: {}",
+            crate::assess::meaning::time_words(task.duration_s()),
             not_determined.join("; ")
         ),
         not_determined,
@@ -662,26 +703,28 @@ fn worst_deg(
 /// A segment an angle of which to judge, in words: "trunk twisted".
 type SegmentAngle = (&'static str, fn(&BodyAngles) -> f64);
 
-/// The segments whose zones are graded by angle, with their holding times' (minutes at 20°,
-/// at 60°): the trunk's inclination (ISO 11226 Figure 2) and each upper arm's elevation (Figure
-/// 3). Beyond 60° not acceptable; 20–60° acceptable up to a holding time that falls with the angle
-/// (static) or at fewer than 2 a minute (EN 1005-4, movements).
-const GRADED: [(SegmentAngle, (f64, f64)); 3] = [
-    (
-        ("trunk inclined", |a| a.trunk_flexion_deg),
-        ISO_TRUNK_HOLD_MIN,
-    ),
+/// The segments whose zones are graded by angle, with their holding-time lines: the trunk's
+/// inclination (ISO 11226 Figure 2) and each upper arm's elevation (Figure 3). Beyond 60° not
+/// acceptable; 20–60° acceptable up to a holding time that falls with the angle (static) or at
+/// fewer than 2 a minute (EN 1005-4, movements).
+const GRADED: [(SegmentAngle, HoldingTime); 3] = [
+    (("trunk inclined", |a| a.trunk_flexion_deg), ISO_TRUNK_HOLD),
     (
         ("right upper arm raised", |a| {
             a.right.upper_arm_elevation_deg
         }),
-        ISO_ARM_HOLD_MIN,
+        ISO_ARM_HOLD,
     ),
     (
         ("left upper arm raised", |a| a.left.upper_arm_elevation_deg),
-        ISO_ARM_HOLD_MIN,
+        ISO_ARM_HOLD,
     ),
 ];
+
+/// The head's inclination, graded by ISO 11226 for static postures: beyond 85° not acceptable,
+/// 25–85° up to its holding time.
+const HEAD_INCLINED: (SegmentAngle, HoldingTime) =
+    (("head inclined", |a| a.head_inclination_deg), ISO_HEAD_HOLD);
 
 /// The trunk's asymmetry: beyond 10° not acceptable (static), or at 2 or more a minute
 /// (movements).
@@ -695,7 +738,6 @@ const TRUNK_ASYMMETRY: [SegmentAngle; 3] = [
 
 fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> Criterion {
     let mut exceeded = Vec::new();
-    let mut caution = Vec::new();
     let is_static = |h: &&SegmentHold| h.hold_s > ISO_STATIC_S;
     // a posture held longer than 4 s, by the same work or by a segment beyond a zone
     let mut judged = (0..phases.len().min(task.phases.len()))
@@ -703,28 +745,30 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         .count();
     let beyond =
         |angle: &dyn Fn(&BodyAngles) -> f64, limit: f64| holds_beyond(task, phases, angle, limit);
-    for ((words, angle), hold_min) in GRADED {
-        // beyond 60°: not acceptable held
+    for ((words, angle), line) in GRADED.into_iter().chain([HEAD_INCLINED]) {
+        // beyond the line's end (60°; the head's 85°): not acceptable held
         let mut flagged = Vec::new();
-        for h in beyond(&angle, 60.0).iter().filter(is_static) {
+        for h in beyond(&angle, line.to_deg).iter().filter(is_static) {
             judged += 1;
             flagged.extend(h.phases.iter().copied());
             exceeded.push(format!(
-                "{}: {} {:.0}° from the vertical, held {:.0} s (beyond 60°)",
+                "{}: {} {:.0}° from the vertical, held {:.0} s (beyond {:.0}°)",
                 h.names(task),
                 words,
                 worst_deg(h, phases, &angle),
-                h.hold_s
+                h.hold_s,
+                line.to_deg
             ));
         }
-        // 20–60°: up to the holding time of its largest angle (held beyond 60° as above)
-        for h in beyond(&angle, 20.0).iter().filter(is_static) {
+        // from the line's start (20°; the head's 25°): up to the holding time of its largest
+        // angle (held beyond the end as above)
+        for h in beyond(&angle, line.from_deg).iter().filter(is_static) {
             judged += 1;
             if h.phases.iter().any(|p| flagged.contains(p)) {
                 continue;
             }
-            let t = worst_deg(h, phases, &angle).min(60.0);
-            let max_s = iso_holding_time_s(t, hold_min);
+            let t = worst_deg(h, phases, &angle).min(line.to_deg);
+            let max_s = line.max_hold_s(t);
             if h.hold_s > max_s {
                 exceeded.push(format!(
                     "{}: {words} {t:.0}° held {:.0} s (at most {max_s:.0} s)",
@@ -735,8 +779,8 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         }
     }
     // beyond these not acceptable held, whatever the time: leaning back, the trunk's asymmetry,
-    // the head (ISO 11226 Figure 4) inclined beyond 85° or tilted back
-    let not_acceptable: [(SegmentAngle, f64, &str); 6] = [
+    // the head tilted back
+    let not_acceptable: [(SegmentAngle, f64, &str); 5] = [
         (
             ("trunk leaning back", |a| -a.trunk_flexion_deg),
             ISO_BACKWARD_TOLERANCE_DEG,
@@ -745,11 +789,6 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         (TRUNK_ASYMMETRY[0], 10.0, " (beyond 10°)"),
         (TRUNK_ASYMMETRY[1], 10.0, " (beyond 10°)"),
         (TRUNK_ASYMMETRY[2], 10.0, " (beyond 10°)"),
-        (
-            ("head inclined", |a| a.head_inclination_deg),
-            85.0,
-            " (beyond 85°)",
-        ),
         (
             ("head tilted back", |a| -a.head_inclination_deg),
             ISO_BACKWARD_TOLERANCE_DEG,
@@ -766,9 +805,7 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             ));
         }
     }
-    // the neck flexed beyond 25° against the trunk not acceptable; the head inclined 25–85° for
-    // a limited holding time
-    let head = |a: &BodyAngles| a.head_inclination_deg;
+    // the neck flexed beyond 25° against the trunk not acceptable
     let neck = |a: &BodyAngles| a.neck_flexion_deg;
     for h in beyond(&neck, 25.0).iter().filter(is_static) {
         judged += 1;
@@ -779,22 +816,11 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             h.hold_s
         ));
     }
-    for h in beyond(&head, 25.0).iter().filter(is_static) {
-        judged += 1;
-        caution.push(format!(
-            "{}: head inclined {:.0}° for {:.0} s (acceptable only for a limited holding time)",
-            h.names(task),
-            worst_deg(h, phases, &head).min(85.0),
-            h.hold_s
-        ));
-    }
     let (status, words) = if !exceeded.is_empty() {
         (
             Status::Exceeded,
             format!("postures not acceptable: {}", exceeded.join("; ")),
         )
-    } else if !caution.is_empty() {
-        (Status::Caution, caution.join("; "))
     } else if judged == 0 {
         (
             Status::NotApplicable,
@@ -814,7 +840,7 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         id: "iso_11226",
         name: "ISO 11226 static postures",
         status,
-        words,
+        words: within_scope(task, status, words),
         source: ISO_SOURCE,
     }
 }
@@ -909,7 +935,7 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
         id: "en_1005_4",
         name: "EN 1005-4 postures in movement",
         status,
-        words,
+        words: within_scope(task, status, words),
         source: EN_SOURCE,
     }
 }
@@ -1271,10 +1297,14 @@ mod tests {
     /// ISO 11226's holding-time lines: 4 min at 20°, 1 min at 60° (trunk), 2.5 min at 40°.
     #[test]
     fn holding_time_lines() {
-        assert_eq!(iso_holding_time_s(20.0, ISO_TRUNK_HOLD_MIN), 240.0);
-        assert_eq!(iso_holding_time_s(60.0, ISO_TRUNK_HOLD_MIN), 60.0);
-        assert_eq!(iso_holding_time_s(40.0, ISO_TRUNK_HOLD_MIN), 150.0);
-        assert_eq!(iso_holding_time_s(40.0, ISO_ARM_HOLD_MIN), 120.0);
+        assert_eq!(ISO_TRUNK_HOLD.max_hold_s(20.0), 240.0);
+        assert_eq!(ISO_TRUNK_HOLD.max_hold_s(60.0), 60.0);
+        assert_eq!(ISO_TRUNK_HOLD.max_hold_s(40.0), 150.0);
+        assert_eq!(ISO_ARM_HOLD.max_hold_s(40.0), 120.0);
+        // head: 8 min at 25°, 1 min at 85°; 35° for 6 min 50 s as reproduced
+        assert_eq!(ISO_HEAD_HOLD.max_hold_s(25.0), 480.0);
+        assert_eq!(ISO_HEAD_HOLD.max_hold_s(85.0), 60.0);
+        assert!((ISO_HEAD_HOLD.max_hold_s(35.0) - 410.0).abs() < 1e-9);
     }
 
     #[test]

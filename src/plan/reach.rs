@@ -27,14 +27,25 @@ pub struct HandBlocked {
 }
 
 impl HandBlocked {
+    /// How much nearer the obstacle the target is than the grip point can come \[m\]: the
+    /// distance to move the target away from it (or to take off the clearance).
+    pub fn shortfall_m(&self) -> f64 {
+        self.hand_m + self.clearance_m - self.distance_m
+    }
+
     pub fn words(&self) -> String {
+        // whole millimetres, at least 1, never below the shortfall (a micron of rounding aside)
+        let move_mm = (1000.0 * self.shortfall_m() - 1e-6).ceil().max(1.0);
         format!(
-            "it is {:.0} mm from '{}', and the hand's shape reaches {:.0} mm beyond its grip point all round; with the {:.0} mm clearance the task asks (objective.clearance_m) the grip point comes no nearer than {:.0} mm: put the target where the grip point would be, or lower the clearance",
-            1000.0 * self.distance_m,
+            "it lies {:.0} mm too near '{}': {:.0} mm from it, where the hand's shape reaches {:.0} mm beyond its grip point all round and the task asks {:.0} mm of clearance (objective.clearance_m), so the grip point comes no nearer than {:.0} mm; move the target {:.0} mm away from '{}' (where the grip point would be), or lower the clearance",
+            move_mm,
             self.obstacle,
+            1000.0 * self.distance_m,
             1000.0 * self.hand_m,
             1000.0 * self.clearance_m,
-            1000.0 * (self.hand_m + self.clearance_m)
+            1000.0 * (self.hand_m + self.clearance_m),
+            move_mm,
+            self.obstacle,
         )
     }
 }

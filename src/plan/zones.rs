@@ -19,7 +19,7 @@
 //! | trunk side bending, axial rotation | 10° each way | ISO 11226; EN 1005-4 |
 //! | trunk turned against the feet | 10° each way | ISO 11226; EN 1005-4 (see below) |
 //! | upper-arm elevation | 20° for 3 min or more, 60° for 1 min or less, linear in between; 60° for movements | ISO 11226 Fig. 3; EN 1005-4 |
-//! | head inclination | 85° forward, 5° back | ISO 11226 |
+//! | head inclination | 25° for a hold of 8 min or more, 85° for 1 min or less, linear in between; 85° for movements; 5° back | ISO 11226 |
 //! | neck flexion | 25° | ISO 11226 |
 //! | neck side bending | 10° each way | ISO 11226; EN 1005-4 |
 //! | neck twist | 45° each way ([`NECK_TWIST_DEG`], ASSUMPTION) | see the constant |
@@ -108,28 +108,59 @@ pub const ZONE_PENALTY_PER_RAD: f64 = 10.0;
 /// A static hold is longer than this \[s\] (ISO 11226, EN 1005-4).
 pub const STATIC_HOLD_S: f64 = 4.0;
 
-/// ISO 11226 Figure 2 (trunk inclination): maximum acceptable holding time \[min\] at 20° and at
-/// 60°, linear between (as secondary sources reproduce the figure).
-pub const TRUNK_HOLD_MIN: (f64, f64) = (4.0, 1.0);
-
-/// ISO 11226 Figure 3 (upper-arm elevation): maximum acceptable holding time \[min\] at 20° and
-/// at 60°, linear between.
-pub const ARM_HOLD_MIN: (f64, f64) = (3.0, 1.0);
-
-/// The maximum acceptable holding time \[s\] of a zone whose holding time falls linearly from
-/// `hold_min.0` at 20° to `hold_min.1` at 60°.
-pub fn holding_time_s(angle_deg: f64, hold_min: (f64, f64)) -> f64 {
-    let x = ((angle_deg - 20.0) / 40.0).clamp(0.0, 1.0);
-    60.0 * (hold_min.0 + x * (hold_min.1 - hold_min.0))
+/// A zone acceptable held up to a maximum holding time that falls linearly with the angle, from
+/// `from_min` minutes at `from_deg` to `to_min` at `to_deg` (beyond `to_deg` not acceptable held;
+/// ISO 11226:2000 step 2, as secondary sources reproduce its figures: the original figures were
+/// not available to check here).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HoldingTime {
+    pub from_deg: f64,
+    pub to_deg: f64,
+    pub from_min: f64,
+    pub to_min: f64,
 }
 
-/// The largest angle \[deg\] that may be held for `hold_s` (the holding-time line read the other
-/// way: 60° up to the shortest time, 20° from the longest).
-pub fn acceptable_angle_deg(hold_s: f64, hold_min: (f64, f64)) -> f64 {
-    let t_min = hold_s / 60.0;
-    let x = ((hold_min.0 - t_min) / (hold_min.0 - hold_min.1)).clamp(0.0, 1.0);
-    20.0 + 40.0 * x
+impl HoldingTime {
+    /// The maximum acceptable holding time \[s\] at `angle_deg` (the longest below the line's
+    /// start, the shortest beyond its end).
+    pub fn max_hold_s(&self, angle_deg: f64) -> f64 {
+        let x = ((angle_deg - self.from_deg) / (self.to_deg - self.from_deg)).clamp(0.0, 1.0);
+        60.0 * (self.from_min + x * (self.to_min - self.from_min))
+    }
+
+    /// The largest angle \[deg\] that may be held for `hold_s` (the line read the other way:
+    /// `to_deg` up to the shortest time, `from_deg` from the longest).
+    pub fn largest_angle_deg(&self, hold_s: f64) -> f64 {
+        let t_min = hold_s / 60.0;
+        let x = ((self.from_min - t_min) / (self.from_min - self.to_min)).clamp(0.0, 1.0);
+        self.from_deg + (self.to_deg - self.from_deg) * x
+    }
 }
+
+/// ISO 11226 Figure 2 (trunk inclination): 4 min at 20° to 1 min at 60°.
+pub const TRUNK_HOLD: HoldingTime = HoldingTime {
+    from_deg: 20.0,
+    to_deg: 60.0,
+    from_min: 4.0,
+    to_min: 1.0,
+};
+
+/// ISO 11226 Figure 3 (upper-arm elevation): 3 min at 20° to 1 min at 60°.
+pub const ARM_HOLD: HoldingTime = HoldingTime {
+    from_deg: 20.0,
+    to_deg: 60.0,
+    from_min: 3.0,
+    to_min: 1.0,
+};
+
+/// ISO 11226 (head inclination, step 2): 8 min at 25° to 1 min at 85° (reproduced as 25° 8 min,
+/// 45° 5 min 40 s, 65° 3 min 20 s, 85° 1 min in ergonomiesite.be's summary of NBN ISO 11226).
+pub const HEAD_HOLD: HoldingTime = HoldingTime {
+    from_deg: 25.0,
+    to_deg: 85.0,
+    from_min: 8.0,
+    to_min: 1.0,
+};
 
 /// One zone row.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -263,15 +294,16 @@ impl ZoneLimits {
             (60.0, 60.0)
         } else {
             (
-                acceptable_angle_deg(hold_s, TRUNK_HOLD_MIN),
-                acceptable_angle_deg(hold_s, ARM_HOLD_MIN),
+                TRUNK_HOLD.largest_angle_deg(hold_s),
+                ARM_HOLD.largest_angle_deg(hold_s),
             )
         };
+        let head = HEAD_HOLD.largest_angle_deg(hold_s);
         let back = ISO_BACKWARD_TOLERANCE_DEG;
         let (w, d) = (WRIST_FLEXION_DEG, WRIST_DEVIATION_DEG);
         let (ns, nt) = (NECK_SIDE_BEND_DEG, NECK_TWIST_DEG);
         let deg = [
-            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, 85.0, back, 25.0, ns, ns, nt, nt, w, w,
+            trunk, back, 10.0, 10.0, 10.0, 10.0, arm, arm, head, back, 25.0, ns, ns, nt, nt, w, w,
             d, d, w, w, d, d, 10.0, 10.0,
         ];
         ZoneLimits {

@@ -175,22 +175,26 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             if ph.reachable {
                 String::new()
             } else {
-                format!(
-                    " — TARGET {} by {:.0} mm (standing where the task allows, balance kept){}",
-                    if ph.beyond_reach_m.is_some() {
-                        "OUT OF REACH"
-                    } else if ph.target_blocked.is_some() {
-                        "NOT REACHABLE"
-                    } else {
-                        "NOT REACHED (no posture that reaches it found; within the body's length)"
-                    },
-                    1000.0 * ph.hand_error_m,
-                    ph.target_inside
-                        .as_ref()
-                        .map(|o| format!(" (it lies inside '{o}')"))
-                        .or_else(|| ph.target_blocked.as_ref().map(|b| format!(" ({b})")))
-                        .unwrap_or_default()
-                )
+                match (&ph.target_inside, &ph.target_blocked) {
+                    (Some(o), _) => format!(
+                        " — TARGET NOT REACHABLE: it lies inside '{o}' (the hand stops {:.0} mm from it)",
+                        1000.0 * ph.hand_error_m
+                    ),
+                    // the hand's distance is the optimiser's; the target's fault is the shortfall
+                    (None, Some(b)) => format!(
+                        " — TARGET NOT REACHABLE: {b} (the hand stops {:.0} mm from it)",
+                        1000.0 * ph.hand_error_m
+                    ),
+                    (None, None) => format!(
+                        " — TARGET {} by {:.0} mm (standing where the task allows, balance kept)",
+                        if ph.beyond_reach_m.is_some() {
+                            "OUT OF REACH"
+                        } else {
+                            "NOT REACHED (no posture that reaches it found; within the body's length)"
+                        },
+                        1000.0 * ph.hand_error_m,
+                    ),
+                }
             }
         );
         let loaded: Vec<String> = ph
@@ -339,6 +343,9 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             && let Some(cli) = c.cli
         {
             let _ = writeln!(o, "NIOSH composite lifting index {cli:.2}");
+        }
+        if let Some(w) = crate::assess::lifting::stance_words(task) {
+            let _ = writeln!(o, "  ({w})");
         }
     }
     o.push_str(&rest_summary(&a.rest, p, a.rohmert_applies()));

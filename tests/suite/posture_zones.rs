@@ -14,10 +14,9 @@
 //!   twists beyond 10°, so the test is not vacuous.
 
 use posture_opt::assess::angles::BodyAngles;
-use posture_opt::assess::verdict::iso_holding_time_s;
 use posture_opt::body::{StaticsData, forward_kinematics};
 use posture_opt::plan::zones::{
-    ARM_HOLD_MIN, TRUNK_HOLD_MIN, ZONE_ROWS, Zone, ZoneLimits, ZoneWork, acceptable_angle_deg,
+    ARM_HOLD, HEAD_HOLD, TRUNK_HOLD, ZONE_ROWS, Zone, ZoneLimits, ZoneWork,
 };
 use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
 use posture_opt::study::what_if::Change;
@@ -240,14 +239,13 @@ fn a_stoop_through_ninety_degrees_of_pelvis_tilt_is_measured_continuously() {
 #[test]
 fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
     // a hold of T seconds is allowed the angle whose maximum holding time is T
-    for t_s in [60.0, 75.0, 90.0, 120.0, 150.0, 180.0, 210.0, 240.0] {
-        for line in [TRUNK_HOLD_MIN, ARM_HOLD_MIN] {
-            let a = acceptable_angle_deg(t_s, line);
-            if a > 20.0 && a < 60.0 {
-                assert!(
-                    (iso_holding_time_s(a, line) - t_s).abs() < 1e-9,
-                    "{t_s} s → {a}°"
-                );
+    for t_s in [
+        60.0, 75.0, 90.0, 120.0, 150.0, 180.0, 210.0, 240.0, 300.0, 420.0, 480.0,
+    ] {
+        for line in [TRUNK_HOLD, ARM_HOLD, HEAD_HOLD] {
+            let a = line.largest_angle_deg(t_s);
+            if a > line.from_deg && a < line.to_deg {
+                assert!((line.max_hold_s(a) - t_s).abs() < 1e-9, "{t_s} s → {a}°");
             }
         }
     }
@@ -259,6 +257,12 @@ fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
     let long = ZoneLimits::for_hold(600.0);
     assert!((deg(&long, Zone::TrunkInclination) - 20.0).abs() < 1e-9);
     assert!((deg(&long, Zone::LeftUpperArm) - 20.0).abs() < 1e-9);
+    // head: 8 min at 25°, 1 min at 85° (ISO 11226 as reproduced: 45° for 5 min 40 s, 65° for
+    // 3 min 20 s)
+    let head = |t_s: f64| deg(&ZoneLimits::for_hold(t_s), Zone::HeadInclination);
+    assert!((head(340.0) - 45.0).abs() < 1e-9);
+    assert!((head(200.0) - 65.0).abs() < 1e-9);
+    assert!((head(600.0) - 25.0).abs() < 1e-9);
     for hold in [2.0, 4.0, 30.0, 60.0] {
         let l = ZoneLimits::for_hold(hold);
         assert!((deg(&l, Zone::TrunkInclination) - 60.0).abs() < 1e-9);

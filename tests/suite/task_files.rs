@@ -953,7 +953,8 @@ fn hand_reach_beyond_grip_by_rays(t: &Task) -> f64 {
 
 /// A washer on a bench: its grip point nearer the bench than the hand's own shape around that
 /// point plus the clearance the task asks is proven unreachable, with the bench named and the
-/// figures given (a trial had "not reached, 202 mm short" and no word of the bench); a target
+/// figures given, leading with how far to move it (a trial had "not reached, 202 mm short" and no
+/// word of the bench); a target
 /// just beyond that bound is not refused. The hand's reach beyond its grip point is measured
 /// here by rays, independently of the closed form.
 #[test]
@@ -974,9 +975,26 @@ fn a_target_too_near_a_surface_for_the_hand_is_proven_and_names_the_surface() {
             b.hand_m
         );
         assert_eq!(b.clearance_m, clearance_m);
-        let w = b.words();
+        // the rays and the closed form agree to 0.1 mm
         assert!(
-            w.contains("from 'bench'") && w.contains("objective.clearance_m"),
+            (b.shortfall_m() - 0.001).abs() < 1.5e-4,
+            "{}",
+            b.shortfall_m()
+        );
+        // the words lead with the shortfall in whole millimetres, never less than it (a trial
+        // read "NOT REACHABLE by 208 mm", the optimiser's hand distance, where the target was
+        // 3 mm too near a shelf)
+        let w = b.words();
+        let mm: f64 = w
+            .strip_prefix("it lies ")
+            .and_then(|r| r.split(" mm too near 'bench'").next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{w}"));
+        let short_mm = 1000.0 * b.shortfall_m();
+        assert!(mm >= short_mm - 1e-6 && mm < short_mm + 1.0, "{w}");
+        assert!(
+            w.contains(&format!("move the target {mm:.0} mm away from 'bench'"))
+                && w.contains("objective.clearance_m"),
             "{w}"
         );
         let t = bench_pick(bound + 0.001, clearance_m);

@@ -587,7 +587,7 @@ fn back_and_strength_table(a: &Assessment) -> String {
     t.render()
 }
 
-fn lifting_section(a: &Assessment) -> String {
+fn lifting_section(task: &Task, a: &Assessment) -> String {
     let Some(l) = &a.lifting else {
         return String::new();
     };
@@ -625,7 +625,8 @@ fn lifting_section(a: &Assessment) -> String {
                 let several = ends.len() > 1;
                 for (p, x) in ends {
                     let m = &x.multipliers;
-                    let level = match x.lifting_index {
+                    // graded as the index is reported (1.004 reads 1.00: at most 1)
+                    let level = match x.lifting_index.map(crate::assess::lifting::reported) {
                         Some(v) if v > 3.0 => Level::Bad,
                         Some(v) if v > 1.0 => Level::Warn,
                         Some(_) => Level::Ok,
@@ -693,7 +694,11 @@ fn lifting_section(a: &Assessment) -> String {
             if let Some(c) = l.composite.as_ref().and_then(|c| c.cli) {
                 let _ = write!(o, "<p>Composite lifting index: <b>{}</b>.</p>", num(c, 2));
             }
-            o.push_str("<p class=\"meta\">Lifting index ≤ 1: nearly all healthy workers can do the lift; above 1 some, above 3 most workers are at increased risk of low-back injury (Waters et al. 1993).</p>");
+            o.push_str("<p class=\"meta\">Lifting index ≤ 1: nearly all healthy workers can do the lift; above 1 some, above 3 most workers are at increased risk of low-back injury (Waters et al. 1993).");
+            if let Some(w) = crate::assess::lifting::stance_words(task) {
+                let _ = write!(o, " {}.", esc(w));
+            }
+            o.push_str("</p>");
         }
     }
     o
@@ -1143,7 +1148,7 @@ pub fn body(
     o.push_str("<h3>Low back and share of workers strong enough</h3>");
     o.push_str(&back_and_strength_table(a));
     o.push_str("<p class=\"meta\">L5/S1 compression with a single equivalent muscle (Chaffin); NIOSH (1981) action limit 3400 N and maximum permissible limit 6400 N. “Strong enough”: the share of women and of men whose strength at this posture exceeds the torque each muscle group must produce.</p>");
-    o.push_str(&lifting_section(a));
+    o.push_str(&lifting_section(task, a));
     o.push_str("</section>");
 
     o.push_str("<section><h2>Work and rest</h2>");

@@ -78,15 +78,18 @@ def limits_for_hold(hold_s):
     t = hold_s / 60.0
     if hold_s <= 4.0:
         trunk = arm = 60.0 * DEG
+        head = 85.0 * DEG
     else:
         trunk = time_limit(t, 4.0, 1.0)
         arm = time_limit(t, 3.0, 1.0)
+        # head inclination: 25 deg + 60 deg * clamp((8 - t)/(8 - 1), 0, 1)
+        head = (25.0 + 60.0 * min(max((8.0 - t) / 7.0, 0.0), 1.0)) * DEG
     L = np.array([
         trunk, 5 * DEG,
         10 * DEG, 10 * DEG,
         10 * DEG, 10 * DEG,
         arm, arm,
-        85 * DEG, 5 * DEG,
+        head, 5 * DEG,
         25 * DEG,
         10 * DEG, 10 * DEG,
         45 * DEG, 45 * DEG,
