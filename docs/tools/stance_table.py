@@ -33,7 +33,8 @@ def run(task, text):
         turn=max(abs(p["angles"]["trunk_twist_deg"] + p["angles"]["pelvis_turn_deg"])
                  for p in a["phases"]),
         rula=a["rula_max"], reba=a["reba_max"],
-        steps=sum(p["feet"]["steps"] for p in phases if p.get("feet")),
+        steps=sum(p["feet"]["steps"] for p in phases if p.get("feet"))
+        + ((d["summary"].get("rest_feet") or {}).get("steps") or 0),
         converged=f"{sum(p['converged'] for p in phases)}/{len(phases)}",
         verdict=a["verdict"]["status"].replace("_", " "),
     )

@@ -1069,6 +1069,7 @@ impl<'t> Planner<'t> {
             .map(|(h, s)| (h, s.fatigue_u_min))
             .fold((0, f64::MIN), |a, b| if b.1 > a.1 { b } else { a });
         let phases = self.phase_summaries(&gp, &group_loads);
+        let rest_feet = self.back_to_rest(&gp);
         let (rest_clear, rest_closest) = self.clearance_of(&q_rest);
         steps.set_posture_loads(postures.iter().map(|p| p.load.clone()).collect());
         Ok(Plan {
@@ -1126,9 +1127,21 @@ impl<'t> Planner<'t> {
                 rest_posture_rad: q_rest,
                 rest_clearance_m: rest_clear,
                 rest_closest,
+                rest_feet,
                 baselines: Vec::new(),
             },
         })
+    }
+
+    /// How the feet get from the cycle's last phase back to the rest stance (the cycle's last
+    /// transition, which the step cost counts as every other).
+    fn back_to_rest(&mut self, gp: &GroupPostures) -> Option<stepping::PhaseFeet> {
+        let last = self.task.phases.len().checked_sub(1)?;
+        let g = self.groups.iter().position(|g| g.contains(&last))?;
+        let before = self.feet_at(&gp.q[g].clone())?;
+        let rest = self.solver.q_rest.clone();
+        let now = self.feet_at(&rest)?;
+        Some(stepping::describe(&before, &now))
     }
 
     fn clearance_of(&mut self, q: &[f64]) -> (f64, Option<String>) {

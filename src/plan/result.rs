@@ -377,7 +377,21 @@ pub struct Summary {
     /// Clearance of the rest posture \[m\] and what it is to.
     pub rest_clearance_m: f64,
     pub rest_closest: Option<String>,
+    /// How the feet get back to the rest stance from the last phase (`None` without feet).
+    pub rest_feet: Option<crate::plan::stepping::PhaseFeet>,
     pub baselines: Vec<BaselineSummary>,
+}
+
+impl Summary {
+    /// The feet's steps in one cycle: into each phase and back to the rest stance.
+    pub fn steps_per_cycle(&self) -> u32 {
+        self.phases
+            .iter()
+            .filter_map(|p| p.feet.as_ref())
+            .chain(self.rest_feet.as_ref())
+            .map(|f| f.steps)
+            .sum()
+    }
 }
 
 /// A plan.

@@ -283,6 +283,14 @@ pub fn plan_summary(task: &Task, p: &Plan, a: &Assessment) -> String {
             ph.search.best_seed + 1
         );
     }
+    if let Some(f) = s.rest_feet.as_ref().filter(|_| steps) {
+        let _ = writeln!(
+            o,
+            "back to rest: feet: {} ({} steps per cycle)",
+            f.words,
+            s.steps_per_cycle()
+        );
+    }
     let _ = writeln!(o);
     let mut caps: Vec<(usize, f64)> = s.final_capacity.iter().copied().enumerate().collect();
     caps.sort_by(|a, b| a.1.total_cmp(&b.1));

@@ -323,12 +323,7 @@ fn figures(plan: &Plan, a: &Assessment) -> Figures {
         back_compression_max_n: a.back_compression_max_n,
         capable_women: a.capable_women,
         exhaustion_s: s.exhaustion.as_ref().map(|e| e.t_s),
-        steps_per_cycle: s
-            .phases
-            .iter()
-            .filter_map(|p| p.feet.as_ref())
-            .map(|f| f.steps)
-            .sum(),
+        steps_per_cycle: s.steps_per_cycle(),
         zone_excess_deg: zone_excess_deg(plan),
         rula_max: a.rula_max,
     }

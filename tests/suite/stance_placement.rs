@@ -21,7 +21,7 @@ use posture_opt::body::StaticsData;
 use posture_opt::body::stance::{FeetNow, SOLE_CORNERS};
 use posture_opt::plan::asymmetry::Asymmetry;
 use posture_opt::plan::posture::PostureWork;
-use posture_opt::plan::stepping::Stepping;
+use posture_opt::plan::stepping::{FootPose, Stepping};
 use posture_opt::plan::task::{
     STANCE_RELATIVE_YAW_RANGE_DEG, STANCE_STAGGER_MAX_M, STANCE_WIDTH_RANGE_M,
 };
@@ -532,4 +532,44 @@ stance: {area_m: [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]}
             1000.0 * closest.0
         );
     }
+}
+
+/// A cycle ends back on the rest stance, and the step cost counts that transition: the plan
+/// reports it (`summary.rest_feet`, the feet where the rest posture puts them) and counts its
+/// steps in the cycle's steps. Recounted here from the poses the plan reports: a foot steps when
+/// its sole centre moves more than 3 cm or it turns more than 10° (docs/worker.md).
+#[test]
+fn the_way_back_to_rest_is_reported_and_counted() {
+    let (task, plan) = placed();
+    let s = &plan.summary;
+    let back = s.rest_feet.as_ref().expect("the feet's way back to rest");
+    // the rest posture's feet, from its forward kinematics
+    let mut pw = PostureWork::new(task);
+    pw.statics(task, &s.rest_posture_rad, &[Vector3::zeros(); 2]);
+    let st = task.stance.as_ref().unwrap();
+    let rest = FeetNow::at(&task.model, &pw.data, &st.feet);
+    for i in 0..2 {
+        let pose = if i == 0 { &back.left } else { &back.right };
+        assert!((pose.sole_center_m[0] - rest.sole_center_m[i].x).abs() < 1e-9);
+        assert!((pose.sole_center_m[1] - rest.sole_center_m[i].y).abs() < 1e-9);
+    }
+    let stepped = |a: &FootPose, b: &FootPose| {
+        let d = ((a.sole_center_m[0] - b.sole_center_m[0]).powi(2)
+            + (a.sole_center_m[1] - b.sole_center_m[1]).powi(2))
+        .sqrt();
+        let turn = ((a.yaw_deg - b.yaw_deg + 540.0) % 360.0 - 180.0).abs();
+        u32::from(d > 0.03 || turn > 10.0)
+    };
+    let last = s.phases.last().unwrap().feet.as_ref().unwrap();
+    assert_eq!(
+        back.steps,
+        stepped(&last.left, &back.left) + stepped(&last.right, &back.right)
+    );
+    assert!(back.steps > 0, "the test needs a plan that steps back");
+    let into: u32 = s
+        .phases
+        .iter()
+        .map(|p| p.feet.as_ref().unwrap().steps)
+        .sum();
+    assert_eq!(s.steps_per_cycle(), into + back.steps);
 }

@@ -834,12 +834,14 @@ fn what_if_lets_the_worker_step_within_a_metre_square_and_replans() {
         "{} vs {per_hour}",
         w.after.u_per_hour_min
     );
+    // the steps into each phase and back to the rest stance
     let steps: u32 = p2
         .summary
         .phases
         .iter()
         .map(|x| x.feet.as_ref().unwrap().steps)
-        .sum();
+        .sum::<u32>()
+        + p2.summary.rest_feet.as_ref().unwrap().steps;
     assert_eq!(w.after.steps_per_cycle, steps);
     // the report's verdict recommends the change exactly when it is advised, in its own words
     let html =
