@@ -83,6 +83,40 @@ pub struct NotWorker(pub String);
 pub const OUT_TO_SIDE_M: f64 = 0.10;
 
 impl BodyAngles {
+    /// Every angle rounded to the whole degree, as the report states it and an observer reads
+    /// it: RULA and REBA score these, so a trunk twisted 10.000000001° by a plan that keeps a
+    /// 10° zone is "twisted 10°" in the words and in the score alike (an ergonomist's trial
+    /// rescored a "10°" side bend that had scored +1). The wrist's twist fraction is not an
+    /// angle and is kept.
+    pub fn to_whole_degrees(&self) -> BodyAngles {
+        let r = f64::round;
+        let arm = |a: &ArmAngles| ArmAngles {
+            upper_arm_flexion_deg: r(a.upper_arm_flexion_deg),
+            upper_arm_abduction_deg: r(a.upper_arm_abduction_deg),
+            elbow_flexion_deg: r(a.elbow_flexion_deg),
+            wrist_flexion_deg: r(a.wrist_flexion_deg),
+            wrist_deviation_deg: r(a.wrist_deviation_deg),
+            forearm_pronation_deg: r(a.forearm_pronation_deg),
+            upper_arm_elevation_deg: r(a.upper_arm_elevation_deg),
+            ..*a
+        };
+        BodyAngles {
+            trunk_flexion_deg: r(self.trunk_flexion_deg),
+            trunk_side_bend_deg: r(self.trunk_side_bend_deg),
+            trunk_twist_deg: r(self.trunk_twist_deg),
+            neck_flexion_deg: r(self.neck_flexion_deg),
+            head_inclination_deg: r(self.head_inclination_deg),
+            neck_side_bend_deg: r(self.neck_side_bend_deg),
+            neck_twist_deg: r(self.neck_twist_deg),
+            right: arm(&self.right),
+            left: arm(&self.left),
+            right_knee_flexion_deg: r(self.right_knee_flexion_deg),
+            left_knee_flexion_deg: r(self.left_knee_flexion_deg),
+            pelvis_turn_deg: r(self.pelvis_turn_deg),
+            ..*self
+        }
+    }
+
     /// The trunk's turn against the feet: its twist against the pelvis plus the pelvis's turn
     /// against the feet (toward the left positive), the twist an observer sees from the feet.
     pub fn trunk_turn_deg(&self) -> f64 {

@@ -186,7 +186,9 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
                 .map(|a| BodyAngles { seated, ..a });
             let (load_kg, held_s, repeats) = activity(task, p);
             let right_heavier = ph.hand_force_n[0].norm() >= ph.hand_force_n[1].norm();
-            let (rula, rula_other) = match &angles {
+            // scored as stated: to the whole degree
+            let scored = angles.as_ref().map(BodyAngles::to_whole_degrees);
+            let (rula, rula_other) = match &scored {
                 Some(a) => {
                     let (r, o) = score_body(
                         a,
@@ -201,7 +203,7 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
                 }
                 None => (None, None),
             };
-            let reba = angles.as_ref().map(|a| {
+            let reba = scored.as_ref().map(|a| {
                 let side = |arm: &super::angles::ArmAngles| RebaSide {
                     upper_arm_flexion_deg: arm.upper_arm_flexion_deg,
                     upper_arm_abduction_deg: arm.upper_arm_abduction_deg,

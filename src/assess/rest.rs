@@ -15,8 +15,10 @@
 //! * **Rohmert (1973)**, the classic rest-allowance rule for static work: a hold of `t` minutes
 //!   at relative load `f > 0.15` needs `RA = 18 · (t/T)^1.4 · (f − 0.15)^0.5` of `t` as rest,
 //!   where `T(f) = −1.5 + 2.1/f − 0.6/f² + 0.1/f³` min is Rohmert's endurance time (Table 2's
-//!   rohmert-general). Per group, the rest of a cycle is the sum over its phases; the cycle
-//!   needs the largest group's. Source: W. Rohmert, Problems of determination of rest
+//!   rohmert-general). The rule is for static work: only holds longer than 4 s count (a hold:
+//!   the run of consecutive phases of the same work, `t` its whole length, its allowance shared
+//!   by its phases). Per group, the rest of a cycle is the sum over its holds; the cycle needs
+//!   the largest group's (the shift verdict's Rohmert criterion states the same figure). Source: W. Rohmert, Problems of determination of rest
 //!   allowances, Part 2, Applied Ergonomics 4(3):158–162 (1973), formula as commonly cited; the
 //!   original was not available to check here.
 //!
@@ -25,6 +27,7 @@
 
 use crate::fatigue::ma::CycleMap;
 use crate::fatigue::{MaParams, MaState};
+use crate::plan::zones::STATIC_HOLD_S;
 use crate::plan::{Plan, Task};
 use serde::Serialize;
 
@@ -303,11 +306,22 @@ fn rohmert_rest(task: &Task, plan: &Plan) -> RohmertRest {
     let mut per_cycle = vec![0.0_f64; nh];
     let mut cycle = u32::MAX;
     let st = &plan.steps;
+    // Rohmert's rule is for static holds: a phase's hold (the run of phases of the same work it
+    // belongs to) longer than 4 s, its allowance that of the whole hold, shared by its steps
+    // (as the shift verdict's criterion counts it)
+    let holds = task.holds();
+    let hold_of = |name: &str| {
+        let p = task.phases.iter().position(|ph| ph.name == name)?;
+        holds.get(p).map(|h| h.0)
+    };
     for i in 0..st.t_s.len() {
         let posture = &plan.postures[st.posture[i]];
         if posture.phase == "rest" {
             continue;
         }
+        let Some(hold_s) = hold_of(&posture.phase).filter(|&h| h > STATIC_HOLD_S) else {
+            continue;
+        };
         if st.cycle[i] != cycle {
             for h in 0..nh {
                 need[h] = need[h].max(per_cycle[h]);
@@ -316,7 +330,7 @@ fn rohmert_rest(task: &Task, plan: &Plan) -> RohmertRest {
             cycle = st.cycle[i];
         }
         for (h, &f) in posture.load.iter().enumerate() {
-            match rohmert_allowance(f, st.duration_s[i]) {
+            match rohmert_allowance(f, hold_s) {
                 Some(ra) => per_cycle[h] += ra * st.duration_s[i],
                 None => over[h] = true,
             }

@@ -66,7 +66,7 @@ use super::lifting::Lifting;
 use super::meaning::{Meaning, last_cycle_loads};
 use super::niosh::{Adjustment, Point};
 use super::phase::PhaseAssessment;
-use super::rest::{RestAdvice, rohmert_allowance, rohmert_endurance_min};
+use super::rest::{RestAdvice, rohmert_endurance_min};
 use crate::assess::angles::BodyAngles;
 use crate::plan::sqp::Stop;
 use crate::plan::{Plan, Task};
@@ -614,6 +614,15 @@ impl SegmentHold {
         }
     }
 
+    /// ", each held 5 s" for a hold longer than a movement's 4 s (static too), else nothing.
+    fn held_words(&self) -> String {
+        if self.hold_s > ISO_STATIC_S {
+            format!(", each held {:.0} s", self.hold_s)
+        } else {
+            String::new()
+        }
+    }
+
     /// The largest of `value` over the hold's phases.
     fn worst(&self, value: impl Fn(usize) -> f64) -> f64 {
         self.phases
@@ -855,10 +864,13 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             hold_s > 0.0 && hold_s <= ISO_STATIC_S
         })
         .count();
-    // a segment's movement: beyond a zone for 4 s or less, so many times a minute
+    // a segment's movement: each time it goes beyond a zone, so many times a minute, however
+    // long it stays there (a trunk bent 38° for 5 s three times a minute is static for ISO 11226
+    // and a repeated movement for EN 1005-4: judging it static alone rated bending longer
+    // better than bending briefly, an ergonomist's trial found)
     let moves = |angle: &dyn Fn(&BodyAngles) -> f64, limit: f64| {
         let mut v = holds_beyond(task, phases, angle, limit);
-        v.retain(|h| h.hold_s > 0.0 && h.hold_s <= ISO_STATIC_S);
+        v.retain(|h| h.hold_s > 0.0);
         v
     };
     let mut out = |bad: bool, what: String| {
@@ -876,10 +888,11 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             out(
                 high,
                 format!(
-                    "{}: {words} {:.0}° from the vertical (beyond 60°), one of {:.1} movements a minute beyond 60°",
+                    "{}: {words} {:.0}° from the vertical (beyond 60°), one of {:.1} movements a minute beyond 60°{}",
                     h.names(task),
                     worst_deg(&h, phases, &angle),
-                    h.per_min
+                    h.per_min,
+                    h.held_words()
                 ),
             );
         }
@@ -889,9 +902,10 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
                 out(
                     false,
                     format!(
-                        "{}: {words} {worst:.0}° from the vertical (20–60°, conditionally acceptable), one of {:.1} movements a minute beyond 20°",
+                        "{}: {words} {worst:.0}° from the vertical (20–60°, conditionally acceptable), one of {:.1} movements a minute beyond 20°{}",
                         h.names(task),
-                        h.per_min
+                        h.per_min,
+                        h.held_words()
                     ),
                 );
             }
@@ -902,10 +916,11 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             out(
                 h.per_min >= EN_HIGH_FREQUENCY_PER_MIN,
                 format!(
-                    "{}: {what} {:.0}° (beyond 10°), one of {:.1} movements a minute beyond 10°",
+                    "{}: {what} {:.0}° (beyond 10°), one of {:.1} movements a minute beyond 10°{}",
                     h.names(task),
                     worst_deg(&h, phases, &angle),
-                    h.per_min
+                    h.per_min,
+                    h.held_words()
                 ),
             );
         }
@@ -942,8 +957,6 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
 
 fn rohmert(task: &Task, loads: &[Vec<f64>], rest: &RestAdvice, holds: &[(f64, f64)]) -> Criterion {
     // Rohmert's rule is for static work: the holds longer than 4 s, each as one hold
-    let nh = task.half_joints.len();
-    let mut need_s = vec![0.0_f64; nh];
     let mut too_long = Vec::new();
     let mut over = Vec::new();
     let mut above = None::<(f64, usize)>;
@@ -975,19 +988,20 @@ fn rohmert(task: &Task, loads: &[Vec<f64>], rest: &RestAdvice, holds: &[(f64, f6
                         t_s
                     ));
                 }
-                if let Some(ra) = rohmert_allowance(f, hold_s) {
-                    need_s[h] += ra * hold_s;
-                }
                 if above.is_none_or(|a| f > a.0) {
                     above = Some((f, h));
                 }
             }
         }
     }
-    let (need, need_h) = need_s
+    // the rest summary's figure, so that the criterion and the summary name the same group
+    // and time (both count the holds longer than 4 s, over every planned cycle)
+    let need = rest.rohmert.rest_s_per_cycle;
+    let need_group = task
+        .half_joints
         .iter()
-        .enumerate()
-        .fold((0.0, 0), |a, (h, &x)| if x > a.0 { (x, h) } else { a });
+        .find(|h| h.id == rest.rohmert.limiting_half_joint)
+        .map_or("", |h| h.group.as_str());
     let (status, words) = if judged == 0 {
         (
             Status::NotApplicable,
@@ -1009,19 +1023,24 @@ fn rohmert(task: &Task, loads: &[Vec<f64>], rest: &RestAdvice, holds: &[(f64, f6
         (
             Status::Exceeded,
             format!(
-                "the {} need {:.1} s of rest per cycle by Rohmert's rest allowance for their static holds; the cycle has {:.1} s",
-                task.half_joints[need_h].group, need, rest.current_rest_s
+                "the {need_group} need {need:.1} s of rest per cycle by Rohmert's rest allowance for their static holds; the cycle has {:.1} s",
+                rest.current_rest_s
             ),
         )
     } else if let Some((f, h)) = above {
         (
             Status::Caution,
             format!(
-                "the {} hold {} statically (above Rohmert's 15 %MVC): sustainable only with the rest the cycle gives ({:.1} s, of which Rohmert asks {:.1} s)",
+                "the {} hold {} statically (above Rohmert's 15 %MVC): sustainable only with the rest the cycle gives ({:.1} s, of which Rohmert asks {:.1} s{})",
                 task.half_joints[h].group,
                 pct(f),
                 rest.current_rest_s,
-                need
+                need,
+                if need_group.is_empty() || need_group == task.half_joints[h].group {
+                    String::new()
+                } else {
+                    format!(", for the {need_group}")
+                }
             ),
         )
     } else {

@@ -255,7 +255,11 @@ impl Zone {
     /// The standard the limit comes from.
     pub fn source(self, movement: bool) -> &'static str {
         match (self, movement) {
-            (Zone::HeadInclination | Zone::HeadBack | Zone::NeckFlexion, _) => "ISO 11226",
+            // ISO 11226's static limits, which the planner keeps in movements too
+            (Zone::HeadInclination | Zone::HeadBack | Zone::NeckFlexion, false) => "ISO 11226",
+            (Zone::HeadInclination | Zone::HeadBack | Zone::NeckFlexion, true) => {
+                "ISO 11226's static limit, kept in movements too"
+            }
             (Zone::NeckSideLeft | Zone::NeckSideRight, _) => "ISO 11226; EN 1005-4",
             (Zone::NeckTwistLeft | Zone::NeckTwistRight, _) => "ASSUMPTION (45°)",
             (

@@ -755,6 +755,67 @@ fn planned_for_what_if(
     (t, p, a, opts)
 }
 
+/// The task `text` (a what-if's change made by hand) planned with `opts`: its fatigue per hour
+/// is the what-if's after the change.
+fn planned_by_hand_as(
+    w: &posture_opt::study::what_if::WhatIf,
+    text: &str,
+    opts: PlanOptions,
+) -> posture_opt::plan::Plan {
+    let t = Task::from_yaml_str(text, std::path::Path::new("by_hand.yaml")).unwrap();
+    let p = plan_task_with(&t, opts).unwrap();
+    let per_hour = p.summary.total_u / (p.summary.duration_s / 3600.0);
+    assert!(
+        (w.after.u_per_hour_min - per_hour).abs() <= 1e-6 * per_hour.max(1.0),
+        "{} vs {per_hour}",
+        w.after.u_per_hour_min
+    );
+    p
+}
+
+/// What the worker looks at, moved where the normal line of sight meets it: a dial 0.60 m above
+/// the hands' work tilts the head back beyond ISO 11226's 5°; the what-if lowers the gaze point
+/// (and only it) by `eye.z − d·tan 15° − z` (d its horizontal distance from the planned eyes,
+/// recomputed here from the plan's posture), at most 0.30 m, and plans the task again; the same
+/// change made by hand gives the same plan.
+#[test]
+fn what_if_moves_what_the_worker_looks_at_to_the_line_of_sight() {
+    let high = BASE
+        .replace(
+            "duration_s: 5.0}",
+            "duration_s: 5.0, gaze_m: [0.60, 0.0, 1.85]}",
+        )
+        .replace("cycles: 10", "cycles: 3");
+    let (t, p, a, opts) = planned_for_what_if(&high, "dial.yaml");
+    let tilt = a.phases[0].angles.as_ref().unwrap().head_inclination_deg;
+    assert!(
+        tilt < -5.0,
+        "the head tilted back {tilt}°: the test needs it"
+    );
+    let w = posture_opt::study::what_if::move_gaze(&t, &p, &a, opts, 0.7)
+        .unwrap()
+        .expect("a gaze point above the line of sight is moved");
+    let Change::MoveGaze { dz_m, .. } = w.change else {
+        panic!("{:?}", w.change)
+    };
+    // the eyes of the planned posture
+    let head = t.head.unwrap();
+    let mut d = StaticsData::new(&t.model, 0);
+    forward_kinematics(&t.model, &mut d, &p.summary.phases[0].q_rad);
+    let eye = d.link_point(&t.model, head.link, &head.eye_in_link_m);
+    let point = Vector3::new(0.60, 0.0, 1.85);
+    let want =
+        (eye.z - (point - eye).xy().norm() * 15f64.to_radians().tan() - point.z).clamp(-0.30, 0.30);
+    assert!(want < -0.05, "{want}");
+    assert!((dz_m - want).abs() < 1e-9, "{dz_m} vs {want}");
+    // by hand
+    let moved = high.replace(
+        "gaze_m: [0.60, 0.0, 1.85]",
+        &format!("gaze_m: [0.60, 0.0, {}]", 1.85 + dz_m),
+    );
+    planned_by_hand_as(&w, &moved, opts);
+}
+
 /// The report's "what would change it": the hardest phase's target moved toward elbow height
 /// (0.630 × stature) by at most 10 cm and the task planned again. Checked against the same change
 /// made by hand in the task file and planned here.
@@ -785,14 +846,7 @@ fn what_if_moves_the_work_toward_elbow_height_and_replans() {
     let moved = BASE
         .replace("[0.35, -0.2, 1.0]", "[0.35, -0.2, 0.80]")
         .replace("cycles: 10", "cycles: 3");
-    let t2 = Task::from_yaml_str(&moved, std::path::Path::new("moved.yaml")).unwrap();
-    let p2 = plan_task_with(&t2, opts).unwrap();
-    let per_hour = p2.summary.total_u / (p2.summary.duration_s / 3600.0);
-    assert!(
-        (w.after.u_per_hour_min - per_hour).abs() <= 1e-6 * per_hour.max(1.0),
-        "{} vs {per_hour}",
-        w.after.u_per_hour_min
-    );
+    let p2 = planned_by_hand_as(&w, &moved, opts);
     assert!((w.after.lowest_capacity - p2.summary.lowest_capacity).abs() < 1e-6);
     // a target already at elbow height is left alone
     let at_elbow = BASE

@@ -207,6 +207,17 @@ pub fn hazards(a: &Assessment, p: usize) -> Vec<String> {
             V::WithinActionLimit => {}
         }
     }
+    // REBA's high and very high risk bands (8–10: action necessary soon; 11–15: now;
+    // Hignett & McAtamney 2000): an ergonomist's trial found the plan naming a REBA 2 phase
+    // hardest beside a REBA 9 lift
+    if let Some(r) = pa.reba.as_ref().filter(|r| r.reba_score >= 8) {
+        out.push(format!(
+            "REBA {} ({} risk: action necessary{})",
+            r.reba_score,
+            r.risk.level.label(),
+            if r.reba_score >= 11 { " now" } else { " soon" }
+        ));
+    }
     if pa.capable_women < DESIGN_CAPABLE_WOMEN {
         out.push(format!(
             "only {:.0} % of women are strong enough, below the design limit of {:.0} %",
@@ -218,8 +229,9 @@ pub fn hazards(a: &Assessment, p: usize) -> Vec<String> {
 }
 
 /// The phase that matters most: one the worker cannot do, else the one where a group gives
-/// out, else the one with the most hazards by the field's limits ([`hazards`]; ties: the higher
-/// L5/S1 compression), else the one where the group that falls lowest holds its highest load,
+/// out, else the one with the most hazards by the field's limits ([`hazards`]: L5/S1 above
+/// NIOSH's action limit, REBA 8 or more, fewer women strong enough than the design limit; ties:
+/// the higher L5/S1 compression), else the one where the group that falls lowest holds its highest load,
 /// else the largest endurance share, else the largest load.
 pub fn worst_phase(
     task: &Task,

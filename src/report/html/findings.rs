@@ -339,7 +339,7 @@ pub fn findings(
             })
             .collect();
         let text = if outside.is_empty() {
-            "Every posture is within the acceptable zones of ISO 11226 and EN 1005-4 (trunk, upper arms, head and neck) and RULA's and REBA's wrist zones.".to_string()
+            "Every posture is within the angles the planner keeps (ISO 11226 and EN 1005-4's limits for the trunk, upper arms, head and neck held in each phase, and RULA's and REBA's wrist zones); how often and how long they are held is judged in the shift criteria.".to_string()
         } else if s.zones {
             format!(
                 "Outside the acceptable zones of ISO 11226 / EN 1005-4 where the targets force it (the plan keeps the zones elsewhere and makes each excess the least the search found): {}. Moving these targets is the layout change that removes them.",
@@ -762,6 +762,13 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
             mm(dx_m.hypot(*dy_m)),
             mm(*beyond_m)
         ),
+        Change::MoveGaze { phase, dz_m } => format!(
+            "placing what {} looks at {} {}, where the normal line of sight ({}° below the horizontal, MIL-STD-1472) meets it",
+            q(phase),
+            mm(dz_m.abs()),
+            if *dz_m > 0.0 { "higher" } else { "lower" },
+            crate::plan::task::LINE_OF_SIGHT_BELOW_DEG
+        ),
         Change::StandingArea { half_side_m } => format!(
             "letting the worker step and turn within {} × {} of floor around the stance (the task fixes the feet)",
             super::fmt::unit(2.0 * half_side_m, 1, "m"),
@@ -790,6 +797,16 @@ pub fn advice_sentence(w: &crate::study::what_if::WhatIf) -> String {
         );
     }
     let lifting = lifting.map_or(String::new(), |l| format!("; {}", esc(&l.words)));
+    if w.eases_postures() {
+        return format!(
+            "<b>{} would bring the postures beyond ISO 11226 / EN 1005-4's acceptable zones from {:.0}° to {:.0}°</b> (summed over the phases; fatigue per hour {:.1} → {:.1} min/h{lifting}; see “What would change it”).",
+            capitalise(&change_words(&w.change)),
+            w.before.zone_excess_deg,
+            w.after.zone_excess_deg,
+            w.before.u_per_hour_min,
+            w.after.u_per_hour_min
+        );
+    }
     if w.ends_exhaustion() {
         return format!(
             "<b>{} would keep every muscle group from giving out</b> (fatigue per hour {:.1} → {:.1} min/h, the first until a group gives out{lifting}; see “What would change it”).",

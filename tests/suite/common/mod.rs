@@ -377,6 +377,7 @@ pub const NULLABLE_KEYS: &[&str] = &[
     "reba",
     "reba_max",
     "rest_closest",
+    "rest_feet",
     "rest_needed_s",
     "rest_s_per_cycle",
     "row",
