@@ -67,7 +67,7 @@ use super::meaning::{Meaning, last_cycle_loads};
 use super::niosh::{Adjustment, Point};
 use super::phase::PhaseAssessment;
 use super::rest::{RestAdvice, rohmert_endurance_min};
-use crate::assess::angles::BodyAngles;
+use crate::assess::angles::{ArmAngles, BodyAngles};
 use crate::plan::sqp::Stop;
 use crate::plan::{Plan, Task};
 use serde::Serialize;
@@ -709,6 +709,39 @@ fn worst_deg(
     })
 }
 
+/// A graded segment's words for one hold: an upper arm whose elevation is mostly backward in the
+/// hold's worst phase (its flexion against the trunk negative and larger than its abduction) is
+/// "behind the trunk," not "raised" (ISO 11226 and EN 1005-4 grade the elevation either way; a
+/// trial read "left upper arm raised 46°" for a free arm swung back).
+fn segment_words(
+    words: &str,
+    h: &SegmentHold,
+    phases: &[PhaseAssessment],
+    angle: &dyn Fn(&BodyAngles) -> f64,
+) -> String {
+    let side: fn(&BodyAngles) -> ArmAngles = if words.starts_with("right upper arm") {
+        |a: &BodyAngles| a.right
+    } else if words.starts_with("left upper arm") {
+        |a: &BodyAngles| a.left
+    } else {
+        return words.to_string();
+    };
+    let worst = h
+        .phases
+        .iter()
+        .filter_map(|&p| phases.get(p)?.angles.as_ref())
+        .max_by(|a, b| angle(a).total_cmp(&angle(b)));
+    match worst.map(side) {
+        Some(arm)
+            if arm.upper_arm_flexion_deg < 0.0
+                && -arm.upper_arm_flexion_deg >= arm.upper_arm_abduction_deg.abs() =>
+        {
+            words.replace(" raised", " behind the trunk,")
+        }
+        _ => words.to_string(),
+    }
+}
+
 /// A segment an angle of which to judge, in words: "trunk twisted".
 type SegmentAngle = (&'static str, fn(&BodyAngles) -> f64);
 
@@ -763,7 +796,7 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             exceeded.push(format!(
                 "{}: {} {:.0}° from the vertical, held {:.0} s (beyond {:.0}°)",
                 h.names(task),
-                words,
+                segment_words(words, h, phases, &angle),
                 worst_deg(h, phases, &angle),
                 h.hold_s,
                 line.to_deg
@@ -780,8 +813,9 @@ fn iso_11226(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             let max_s = line.max_hold_s(t);
             if h.hold_s > max_s {
                 exceeded.push(format!(
-                    "{}: {words} {t:.0}° held {:.0} s (at most {max_s:.0} s)",
+                    "{}: {} {t:.0}° held {:.0} s (at most {max_s:.0} s)",
                     h.names(task),
+                    segment_words(words, h, phases, &angle),
                     h.hold_s
                 ));
             }
@@ -888,8 +922,9 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
             out(
                 high,
                 format!(
-                    "{}: {words} {:.0}° from the vertical (beyond 60°), one of {:.1} movements a minute beyond 60°{}",
+                    "{}: {} {:.0}° from the vertical (beyond 60°), one of {:.1} movements a minute beyond 60°{}",
                     h.names(task),
+                    segment_words(&words, &h, phases, &angle),
                     worst_deg(&h, phases, &angle),
                     h.per_min,
                     h.held_words()
@@ -902,8 +937,9 @@ fn en_1005_4(task: &Task, phases: &[PhaseAssessment], holds: &[(f64, f64)]) -> C
                 out(
                     false,
                     format!(
-                        "{}: {words} {worst:.0}° from the vertical (20–60°, conditionally acceptable), one of {:.1} movements a minute beyond 20°{}",
+                        "{}: {} {worst:.0}° from the vertical (20–60°, conditionally acceptable), one of {:.1} movements a minute beyond 20°{}",
                         h.names(task),
+                        segment_words(&words, &h, phases, &angle),
                         h.per_min,
                         h.held_words()
                     ),

@@ -466,3 +466,32 @@ fn a_pass_says_what_force_the_postures_standards_do_not_cover() {
     }
     assert!(passes >= 2, "no pass to read");
 }
+
+/// An upper arm swung back is graded by its elevation like a raised one (ISO 11226 and
+/// EN 1005-4 measure the angle from the vertical either way) but named as it is: "behind the
+/// trunk", not "raised".
+#[test]
+fn an_arm_behind_the_trunk_is_named_so() {
+    let (t, p, a) = three_short_phases();
+    let judge = |flexion_deg: f64| {
+        let mut phases = a.phases.clone();
+        for ph in &mut phases {
+            let x = ph.angles.as_mut().expect("angles");
+            x.left.upper_arm_elevation_deg = 46.0;
+            x.left.upper_arm_flexion_deg = flexion_deg;
+            x.left.upper_arm_abduction_deg = 5.0;
+        }
+        let v = shift_verdict(t, p, &a.meaning, &phases, &a.rest, None, None);
+        v.criterion("en_1005_4").unwrap().words.clone()
+    };
+    let back = judge(-46.0);
+    assert!(
+        back.contains("left upper arm behind the trunk, 46° from the vertical (20–60°"),
+        "{back}"
+    );
+    let front = judge(46.0);
+    assert!(
+        front.contains("left upper arm raised 46° from the vertical (20–60°"),
+        "{front}"
+    );
+}
