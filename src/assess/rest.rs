@@ -309,17 +309,22 @@ fn rohmert_rest(task: &Task, plan: &Plan) -> RohmertRest {
     // Rohmert's rule is for static holds: a phase's hold (the run of phases of the same work it
     // belongs to) longer than 4 s, its allowance that of the whole hold, shared by its steps
     // (as the shift verdict's criterion counts it)
+    // each posture's static hold, looked up once (not per step: a task may have 10⁵ cycles)
     let holds = task.holds();
-    let hold_of = |name: &str| {
-        let p = task.phases.iter().position(|ph| ph.name == name)?;
-        holds.get(p).map(|h| h.0)
-    };
+    let static_hold_s: Vec<Option<f64>> = plan
+        .postures
+        .iter()
+        .map(|posture| {
+            if posture.phase == "rest" {
+                return None;
+            }
+            let p = task.phases.iter().position(|ph| ph.name == posture.phase)?;
+            holds.get(p).map(|h| h.0).filter(|&h| h > STATIC_HOLD_S)
+        })
+        .collect();
     for i in 0..st.t_s.len() {
         let posture = &plan.postures[st.posture[i]];
-        if posture.phase == "rest" {
-            continue;
-        }
-        let Some(hold_s) = hold_of(&posture.phase).filter(|&h| h > STATIC_HOLD_S) else {
+        let Some(hold_s) = static_hold_s[st.posture[i]] else {
             continue;
         };
         if st.cycle[i] != cycle {

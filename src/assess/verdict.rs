@@ -1042,7 +1042,7 @@ fn rohmert(task: &Task, loads: &[Vec<f64>], rest: &RestAdvice, holds: &[(f64, f6
         (
             Status::NotApplicable,
             format!(
-                "no posture is held longer than {ISO_STATIC_S:.0} s (Rohmert's rule is for static holds)"
+                "no work is held longer than {ISO_STATIC_S:.0} s in one posture, so no muscle load is static (Rohmert's rule is for static holds)"
             ),
         )
     } else if !over.is_empty() {

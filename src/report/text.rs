@@ -36,7 +36,7 @@ pub fn rest_summary(r: &RestAdvice, p: &Plan, rohmert_applies: bool) -> String {
     if !rohmert_applies {
         let _ = writeln!(
             o,
-            "  Rohmert (1973) rest allowance: not applicable (no posture is held longer than {:.0} s; the rule is for static holds)",
+            "  Rohmert (1973) rest allowance: not applicable (no work is held longer than {:.0} s in one posture, so no muscle load is static; the rule is for static holds)",
             crate::assess::verdict::ISO_STATIC_S
         );
     } else if r.rohmert.rest_s_per_cycle < 0.05 {

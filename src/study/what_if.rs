@@ -54,6 +54,14 @@ pub const STANDING_AREA_HALF_SIDE_M: f64 = 0.5;
 /// move with solver noise (the stability tests' bound); smaller gains stay among the findings.
 pub const ADVISE_FRACTION: f64 = 0.10;
 
+/// Largest move of what the worker looks at (a screen, a dial) \[m\]: ASSUMPTION, about the
+/// travel of a monitor arm or of a screen moved on its desk, not a new workstation.
+pub const MAX_GAZE_MOVE_M: f64 = 0.30;
+
+/// A move of what the worker looks at smaller than this is not planned \[m\]: ASSUMPTION, as
+/// [`NEAR_ELBOW_M`] for the hands' work (less is within what the eyes take without the head).
+pub const MIN_GAZE_MOVE_M: f64 = 0.05;
+
 /// A change the report's verdict recommends for its postures brings their excess beyond the
 /// standards' acceptable zones (summed over the cycle's phases) down by at least this much
 /// \[deg\] without raising fatigue per hour: ASSUMPTION, about what an observer sees (the 10° the
@@ -564,8 +572,10 @@ fn head_beyond_deg(a: &Assessment, p: usize) -> f64 {
         .get(p)
         .and_then(|pa| pa.angles.as_ref())
         .map_or(0.0, |x| {
-            let back = -x.head_inclination_deg - crate::plan::zones::ISO_BACKWARD_TOLERANCE_DEG;
-            back.max(x.head_inclination_deg - 25.0).max(0.0)
+            use crate::plan::zones::{HEAD_HOLD, ISO_BACKWARD_TOLERANCE_DEG};
+            let back = -x.head_inclination_deg - ISO_BACKWARD_TOLERANCE_DEG;
+            back.max(x.head_inclination_deg - HEAD_HOLD.from_deg)
+                .max(0.0)
         })
 }
 
@@ -573,8 +583,8 @@ fn head_beyond_deg(a: &Assessment, p: usize) -> f64 {
 /// zone (the phase with the largest excess among those that give a `gaze_m`: a screen, a dial, a
 /// part held in a fixture) up or down to where the normal line of sight from the planned eyes
 /// meets it ([`crate::plan::task::LINE_OF_SIGHT_BELOW_DEG`] below the horizontal, MIL-STD-1472),
-/// by at most [`MAX_CLOSER_M`], plans the changed task with `opts` (without baselines) and
-/// compares. `None` when no such phase, no head, or a move under [`NEAR_ELBOW_M`]. An
+/// by at most [`MAX_GAZE_MOVE_M`], plans the changed task with `opts` (without baselines) and
+/// compares. `None` when no such phase, no head, or a move under [`MIN_GAZE_MOVE_M`]. An
 /// ergonomist's trial had a screen above eye level tilt the head back while the report only
 /// offered to move the hands' work.
 pub fn move_gaze(
@@ -611,8 +621,8 @@ pub fn move_gaze(
     let below = crate::plan::task::LINE_OF_SIGHT_BELOW_DEG
         .to_radians()
         .tan();
-    let dz = (eye.z - d * below - point.z).clamp(-MAX_CLOSER_M, MAX_CLOSER_M);
-    if dz.abs() < NEAR_ELBOW_M {
+    let dz = (eye.z - d * below - point.z).clamp(-MAX_GAZE_MOVE_M, MAX_GAZE_MOVE_M);
+    if dz.abs() < MIN_GAZE_MOVE_M {
         return Ok(None);
     }
     let mut changed = task.clone();

@@ -730,7 +730,7 @@ fn rest_section(plan: &Plan, a: &Assessment) -> String {
             "Rohmert (1973) rest allowance",
             if !a.rohmert_applies() {
                 format!(
-                    "not applicable (no posture is held longer than {:.0} s; the rule is for static holds)",
+                    "not applicable (no work is held longer than {:.0} s in one posture, so no muscle load is static; the rule is for static holds)",
                     crate::assess::verdict::ISO_STATIC_S
                 )
             } else {
