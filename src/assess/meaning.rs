@@ -10,9 +10,10 @@
 //! * **Capacity left**: the lowest capacity at the end of the task (fraction of strength).
 
 use crate::fatigue::ma::CycleMap;
-use crate::fatigue::{MaParams, MaState};
+use crate::fatigue::{MaParams, MaState, PreparedHold};
 use crate::plan::{Plan, Task};
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// Words for a pace no group gives out at within the time followed, by `exhaustion_verdict`:
 /// "never (settles)", or "not determined (followed N)" when the capacities had not settled yet.
@@ -299,12 +300,18 @@ pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
         exhaustion: None,
     };
     let st = &plan.steps;
+    // each posture held for each duration prepared once: a long task holds a few of them
+    // thousands of times over, and only the capacity is wanted here
+    let mut prepared: HashMap<(usize, u64), Vec<PreparedHold>> = HashMap::new();
     for i in 0..st.t_s.len() {
         let f = &plan.postures[st.posture[i]].load;
         let d = st.duration_s[i];
+        let holds = prepared
+            .entry((st.posture[i], d.to_bits()))
+            .or_insert_with(|| (0..nh).map(|h| params[h].prepare(f[h], d)).collect());
         for h in 0..nh {
             let c0 = state[h].capacity;
-            params[h].hold(&mut state[h], f[h], d);
+            state[h].capacity = holds[h].capacity(c0);
             // capacity moves monotonically within a step held at one load, so the group gives
             // out within it only if it starts or ends at or below the load: only then is the
             // time sought (a group that starts below its load may recover above it by the end)

@@ -359,11 +359,17 @@ pub fn shift_verdict(
     } else {
         format!(" (also {})", others.join(", "))
     };
-    // the headline names the binding criterion with its first two findings
+    // the headline names the binding criterion with its first two findings (three when that is
+    // all: "(and 1 more)" hides what one more clause would say)
     let short = |w: &str| {
         let parts: Vec<&str> = w.split("; ").collect();
-        if parts.len() > 2 {
-            format!("{}; {} (and {} more)", parts[0], parts[1], parts.len() - 2)
+        if parts.len() > 3 {
+            format!(
+                "{}; {} (and {} more under the criterion)",
+                parts[0],
+                parts[1],
+                parts.len() - 2
+            )
         } else {
             w.to_string()
         }

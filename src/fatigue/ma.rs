@@ -166,16 +166,74 @@ const C_FLOOR: f64 = f64::MIN_POSITIVE;
 /// Returns `(c1, ΔU)`; ΔU may be infinite when it exceeds a double.
 #[inline]
 pub fn step_exact(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> (f64, f64) {
-    // unloaded and fully rested: nothing changes (the common case of a muscle group the task
-    // never loads; its exact update returns the same numbers, bit for bit)
-    if k * f + r <= 0.0 || t_min <= 0.0 || (f == 0.0 && c0 == 1.0) {
-        return (c0, 0.0);
+    PreparedHold::from_rates(k, r, f, t_min).step(c0)
+}
+
+/// A load held for a time, its per-step constants (exponentials) computed once, for a replay that
+/// holds the same load for the same time many times (every cycle of a long task): each update is
+/// then a few multiplications, and exactly — bit for bit — what [`MaParams::hold`] gives (which
+/// is built on it).
+#[derive(Debug, Clone, Copy)]
+pub struct PreparedHold {
+    f: f64,
+    /// `None`: nothing changes (no load and no recovery, or no time).
+    step: Option<super::schedule::Prepared<f64>>,
+}
+
+impl PreparedHold {
+    fn from_rates(k: f64, r: f64, f: f64, t_min: f64) -> Self {
+        let changes = !(k * f + r <= 0.0 || t_min <= 0.0);
+        PreparedHold {
+            f,
+            step: changes.then(|| super::schedule::Prepared::from_rates(k, f, r, t_min)),
+        }
     }
-    let (c1, du) = super::schedule::Prepared::from_rates(k, f, r, t_min).apply(c0);
-    (
-        c1.clamp(C_FLOOR, 1.0),
-        if f == 0.0 { 0.0 } else { du.max(0.0) },
-    )
+
+    /// The held step's constants, unless the group does not change from `c0` (unloaded and fully
+    /// rested: the common case of a muscle group the task never loads, whose exact update returns
+    /// the same numbers, bit for bit).
+    #[inline]
+    fn changing(&self, c0: f64) -> Option<&super::schedule::Prepared<f64>> {
+        self.step.as_ref().filter(|_| !(self.f == 0.0 && c0 == 1.0))
+    }
+
+    /// `(c1, ΔU)` from capacity `c0`, as [`step_exact`].
+    #[inline]
+    pub fn step(&self, c0: f64) -> (f64, f64) {
+        match self.changing(c0) {
+            None => (c0, 0.0),
+            Some(p) => {
+                let (c1, du) = p.apply(c0);
+                (
+                    c1.clamp(C_FLOOR, 1.0),
+                    if self.f == 0.0 { 0.0 } else { du.max(0.0) },
+                )
+            }
+        }
+    }
+
+    /// The capacity after the step from `c0`, alone (the same number [`PreparedHold::step`]
+    /// gives, without the fatigue index's logarithms).
+    #[inline]
+    pub fn capacity(&self, c0: f64) -> f64 {
+        self.changing(c0)
+            .map_or(c0, |p| p.capacity(c0).clamp(C_FLOOR, 1.0))
+    }
+
+    /// Updates `state` as [`MaParams::hold`]; false once U no longer fits in a double.
+    #[inline]
+    pub fn hold(&self, state: &mut MaState) -> bool {
+        let (c1, du) = self.step(state.capacity);
+        state.capacity = c1;
+        let u = state.fatigue_u_min + du;
+        if u.is_finite() {
+            state.fatigue_u_min = u;
+            true
+        } else {
+            state.fatigue_u_min = f64::MAX;
+            false
+        }
+    }
 }
 
 impl MaParams {
@@ -224,22 +282,14 @@ impl MaParams {
     /// ```
     #[inline]
     pub fn hold(&self, state: &mut MaState, f: f64, dt_s: f64) -> bool {
-        let (c1, du) = step_exact(
-            self.k_per_min,
-            self.r_at(f),
-            f,
-            state.capacity,
-            s_to_min(dt_s),
-        );
-        state.capacity = c1;
-        let u = state.fatigue_u_min + du;
-        if u.is_finite() {
-            state.fatigue_u_min = u;
-            true
-        } else {
-            state.fatigue_u_min = f64::MAX;
-            false
-        }
+        self.prepare(f, dt_s).hold(state)
+    }
+
+    /// Holding `f` for `dt_s` seconds prepared once, for holding it again and again
+    /// ([`PreparedHold`]).
+    #[inline]
+    pub fn prepare(&self, f: f64, dt_s: f64) -> PreparedHold {
+        PreparedHold::from_rates(self.k_per_min, self.r_at(f), f, s_to_min(dt_s))
     }
 
     /// Time \[s\] for capacity to go from `c0` to `target` while holding `f`; `None` if it never

@@ -20,7 +20,8 @@ pub mod units;
 
 pub use held_load::{HeldLoad, MetReport, met_report};
 pub use ma::{
-    CurvePoint, FatigueError, MaParams, MaState, Recovery, hold_all, met_min, step_exact,
+    CurvePoint, FatigueError, MaParams, MaState, PreparedHold, Recovery, hold_all, met_min,
+    step_exact,
 };
 pub use three_compartment::{Region, ThreeCompartment, ThreeCompartmentState};
 

@@ -50,7 +50,7 @@ pub struct CyclesOutcome<T> {
 }
 
 /// A step with its per-step constants precomputed.
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct Prepared<T> {
     f: T,
     /// No recovery during the step: `c1 = c0 s`, `ΔU = e2 / c0²`.
@@ -121,25 +121,37 @@ impl<T: Real> Prepared<T> {
         }
     }
 
+    /// Capacity after the step from capacity `c0`.
+    #[inline]
+    pub(crate) fn capacity(&self, c0: T) -> T {
+        if self.no_recovery {
+            c0 * self.s
+        } else if !self.big {
+            // c1 = c0 e^{−λt} + a (1 − e^{−λt}): two non-negative terms, so a small capacity
+            // keeps its relative precision (a + (c0 − a) e^{−λt} would cancel)
+            let xm1 = self.xm1_or_e2;
+            (c0 + self.a * xm1) / (xm1 + 1.0)
+        } else {
+            c0 * self.s + self.a * self.one_minus_s
+        }
+    }
+
     /// Capacity after the step and the U gained, from capacity `c0`.
     #[inline]
     pub(crate) fn apply(&self, c0: T) -> (T, T) {
+        let c1 = self.capacity(c0);
         if self.no_recovery {
-            return (c0 * self.s, self.xm1_or_e2 / (c0 * c0));
+            return (c1, self.xm1_or_e2 / (c0 * c0));
         }
         let a = self.a;
         let f = self.f;
-        // c1 = c0 e^{−λt} + a (1 − e^{−λt}): two non-negative terms, so a small capacity keeps
-        // its relative precision (a + (c0 − a) e^{−λt} would cancel).
         if !self.big {
             let xm1 = self.xm1_or_e2;
-            let c1 = (c0 + a * xm1) / (xm1 + 1.0);
             let y = xm1 / c0;
             let w = a * y;
             let du = f / self.lambda * y * (T::cst(1.0) / (c0 * (w + 1.0)) + g_of_w(w) * y);
             (c1, du)
         } else {
-            let c1 = c0 * self.s + a * self.one_minus_s;
             // ΔU = f/(λa²)·h(w) + f/(λ a c0)·w/(1+w), w = a (e^{λt} − 1)/c0, h(w) = ln(1+w) −
             // w/(1+w) ≥ 0: no cancellation however small a = R/λ is; w is formed from its
             // logarithm, so e^{λt} never overflows.

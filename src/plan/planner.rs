@@ -48,8 +48,9 @@ use super::stepping::{self, Stepping};
 use super::task::Task;
 use super::zones::{self, ZONE_PENALTY_PER_RAD, ZoneLimits, ZoneWork};
 use crate::body::stance::FeetNow;
-use crate::fatigue::{MaParams, MaState};
+use crate::fatigue::{MaParams, MaState, PreparedHold};
 use nalgebra::{Vector2, Vector3};
+use std::collections::HashMap;
 
 /// Why planning failed (an internal failure: the task was already validated).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -964,6 +965,9 @@ impl<'t> Planner<'t> {
         let mut last_plan_cycle = 0u32;
         let mut last_plan_t = 0.0;
         let mut lowest = (1.0f64, 0usize, 0.0f64);
+        // each posture held for each duration prepared once (a task repeats a few of them
+        // cycle after cycle; the updates are the same numbers as `MaParams::hold`'s)
+        let mut prepared: HashMap<(usize, u64), Vec<PreparedHold>> = HashMap::new();
         let n_steps = t.cycles as usize * (n_ph + usize::from(t.rest_s > 0.0));
         steps.t_s.reserve(n_steps);
         'cycles: for cycle in 0..t.cycles {
@@ -1023,13 +1027,22 @@ impl<'t> Planner<'t> {
                 };
                 // the posture's loads, as the plan's timeline replays them (Steps::replay)
                 let f = &postures[pidx].load;
-                let mut dur = dur;
+                let holds = prepared
+                    .entry((pidx, dur.to_bits()))
+                    .or_insert_with(|| (0..nh).map(|h| t.fatigue[h].prepare(f[h], dur)).collect());
                 let mut ex: Option<(f64, usize)> = None;
                 for h in 0..nh {
-                    let te = if f[h] > 0.0 && state[h].capacity <= f[h] {
+                    let c0 = state[h].capacity;
+                    // capacity moves monotonically within the step, so the group gives out
+                    // within it only if it starts or ends at or below its load
+                    if !(f[h] > 0.0 && (c0 <= f[h] || holds[h].capacity(c0) <= f[h] * (1.0 + 1e-9)))
+                    {
+                        continue;
+                    }
+                    let te = if c0 <= f[h] {
                         Some(0.0)
                     } else {
-                        t.fatigue[h].time_to_exhaustion_s(state[h].capacity, f[h])
+                        t.fatigue[h].time_to_exhaustion_s(c0, f[h])
                     };
                     if let Some(te) = te
                         && te < dur
@@ -1038,6 +1051,7 @@ impl<'t> Planner<'t> {
                         ex = Some((te, h));
                     }
                 }
+                let mut dur = dur;
                 if let Some((te, h)) = ex {
                     dur = te;
                     exhaustion = Some(Exhaustion {
@@ -1050,7 +1064,11 @@ impl<'t> Planner<'t> {
                     });
                 }
                 for h in 0..nh {
-                    MaParams::hold(&t.fatigue[h], &mut state[h], f[h], dur);
+                    if ex.is_some() {
+                        MaParams::hold(&t.fatigue[h], &mut state[h], f[h], dur);
+                    } else {
+                        holds[h].hold(&mut state[h]);
+                    }
                     if state[h].capacity < lowest.0 {
                         lowest = (state[h].capacity, h, time + dur);
                     }

@@ -5,10 +5,11 @@
 //! loads and strengths depend only on the posture and the hand forces, so they live with the
 //! `postures` that steps refer to by index.
 
-use crate::fatigue::{MaParams, MaState, Recovery};
+use crate::fatigue::{MaParams, MaState, PreparedHold, Recovery};
 use crate::plan::search::SearchStats;
 use crate::plan::sqp::SqpOutcome;
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// One half-joint (muscle group) of the plan.
 #[derive(Debug, Clone, Serialize)]
@@ -130,13 +131,14 @@ impl Steps {
     pub fn course(&self, h: usize) -> impl Iterator<Item = (f64, MaState)> + '_ {
         let p = self.params[h];
         let mut state = self.start[h];
+        let mut prepared = HashMap::new();
         (0..self.len()).map(move |i| {
-            p.hold(
-                &mut state,
-                self.loads[self.posture[i]][h],
-                self.duration_s[i],
-            );
-            (self.t_s[i] + self.duration_s[i], state)
+            let (posture, d) = (self.posture[i], self.duration_s[i]);
+            prepared
+                .entry((posture, d.to_bits()))
+                .or_insert_with(|| p.prepare(self.loads[posture][h], d))
+                .hold(&mut state);
+            (self.t_s[i] + d, state)
         })
     }
 
@@ -146,6 +148,7 @@ impl Steps {
             steps: self,
             next: 0,
             state: self.start.clone(),
+            prepared: HashMap::new(),
         }
     }
 }
@@ -156,6 +159,9 @@ pub struct Replay<'a> {
     steps: &'a Steps,
     next: usize,
     state: Vec<MaState>,
+    /// Each posture held for each duration, prepared once (the updates are `MaParams::hold`'s,
+    /// bit for bit): a long task holds a few of them thousands of times over.
+    prepared: HashMap<(usize, u64), Vec<PreparedHold>>,
 }
 
 impl Replay<'_> {
@@ -168,9 +174,19 @@ impl Replay<'_> {
             return None;
         }
         self.next += 1;
-        let f = &st.loads[st.posture[i]];
-        for ((p, s), &fh) in st.params.iter().zip(self.state.iter_mut()).zip(f) {
-            p.hold(s, fh, st.duration_s[i]);
+        let (posture, d) = (st.posture[i], st.duration_s[i]);
+        let holds = self
+            .prepared
+            .entry((posture, d.to_bits()))
+            .or_insert_with(|| {
+                st.params
+                    .iter()
+                    .zip(&st.loads[posture])
+                    .map(|(p, &f)| p.prepare(f, d))
+                    .collect()
+            });
+        for (hold, s) in holds.iter().zip(self.state.iter_mut()) {
+            hold.hold(s);
         }
         Some(&self.state)
     }

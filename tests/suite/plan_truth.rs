@@ -105,7 +105,7 @@ fn the_timeline_is_the_hold_by_hold_replay_of_the_plans_postures() {
         totals[0]
     );
     // and a shipped multi-phase task with a pushing force
-    let (_, plan) = crate::common::shipped_plan("bench_assembly", false);
+    let (_, plan) = crate::common::shipped_plan("bench_assembly");
     assert_timeline_is_the_replay(plan, "bench assembly");
 }
 
@@ -113,7 +113,7 @@ fn the_timeline_is_the_hold_by_hold_replay_of_the_plans_postures() {
 /// iterations; and the converged ones are the rule on a shipped task.
 #[test]
 fn converged_phases_meet_the_kkt_tolerance() {
-    let (_, plan) = crate::common::shipped_plan("bench_assembly", false);
+    let (_, plan) = crate::common::shipped_plan("bench_assembly");
     let tol = SqpSettings::default().tol_kkt;
     let mut converged = 0;
     for p in &plan.summary.phases {
@@ -179,7 +179,7 @@ fn assert_only_extends(what: &str, with: &[f64], without: &[f64]) {
 #[test]
 fn the_pool_swap_and_cross_seeding_only_lower_the_first_plans_objective() {
     for name in ["shelf", "bench_assembly"] {
-        let (task, plan) = crate::common::shipped_plan(name, false);
+        let (task, plan) = crate::common::shipped_plan(name);
         let with = &plan.summary;
         let no_swap = PlanOptions {
             pool_swap: false,
@@ -314,26 +314,23 @@ fn solver_precision_does_not_decide(name: &str) -> Vec<String> {
             bad.push(what);
         }
     };
-    let task =
-        Task::from_file(format!("{}/tasks/{name}.yaml", env!("CARGO_MANIFEST_DIR"))).unwrap();
-    let plan_with = |tol: f64, baselines: bool| {
-        let sqp = SqpSettings {
-            precision: QpPrecision {
-                tol_gap: tol,
-                tol_feas: tol,
+    // the default plan (the QP's tolerance 1e-9), with its baselines, shared with other tests
+    let (task, a) = crate::common::shipped_plan(name);
+    assert_eq!(SqpSettings::default().precision.tol_gap, 1e-9);
+    let b = plan_task_with(
+        task,
+        PlanOptions {
+            sqp: SqpSettings {
+                precision: QpPrecision {
+                    tol_gap: 1e-8,
+                    tol_feas: 1e-8,
+                },
+                ..SqpSettings::default()
             },
-            ..SqpSettings::default()
-        };
-        plan_task_with(
-            &task,
-            PlanOptions {
-                sqp,
-                ..held(baselines)
-            },
-        )
-        .unwrap()
-    };
-    let (a, b) = (plan_with(1e-9, true), plan_with(1e-8, false));
+            ..held(false)
+        },
+    )
+    .unwrap();
     let (ja, jb) = (
         *a.summary.passes.last().unwrap(),
         *b.summary.passes.last().unwrap(),
@@ -366,8 +363,8 @@ fn solver_precision_does_not_decide(name: &str) -> Vec<String> {
         d_j <= 5e-3,
         format!("{name}: objective {ja} vs {jb} at the QP's two precisions (difference {d_j:.1e})"),
     );
-    let verdict = |p: &Plan| posture_opt::assess::assess(&task, p, 0.7).verdict.status;
-    let verdict_a = verdict(&a);
+    let verdict = |p: &Plan| posture_opt::assess::assess(task, p, 0.7).verdict.status;
+    let verdict_a = verdict(a);
     // the total within the bound, and the same shift verdict
     let compare = |check: &mut dyn FnMut(bool, String), what: &str, other: &Plan| {
         let rel = (a.summary.total_u - other.summary.total_u).abs() / a.summary.total_u;
@@ -394,7 +391,7 @@ fn solver_precision_does_not_decide(name: &str) -> Vec<String> {
     );
     // the seeds screened in reverse order: the same bounds on the total and the verdict
     let c = plan_task_with(
-        &task,
+        task,
         PlanOptions {
             search: SearchSettings {
                 reversed: true,
@@ -787,7 +784,7 @@ fn adaptive_plan_never_ends_above_the_held_plan() {
             },
         )
         .unwrap();
-        let (_, held) = crate::common::shipped_plan(name, false);
+        let (_, held) = crate::common::shipped_plan(name);
         let (a, h) = (adaptive.summary.total_u, held.summary.total_u);
         assert!(
             a <= h * (1.0 + 1e-9),
@@ -802,7 +799,7 @@ fn adaptive_plan_never_ends_above_the_held_plan() {
 #[test]
 fn a_hinted_plan_checks_its_hint_and_reaches_the_targets() {
     use posture_opt::plan::{PlanError, Planner};
-    let (task, plan) = crate::common::shipped_plan("bench_assembly", false);
+    let (task, plan) = crate::common::shipped_plan("bench_assembly");
     let hint: Vec<Vec<f64>> = plan
         .summary
         .phases

@@ -287,7 +287,7 @@ fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
 fn shelf_plan(zones: bool) -> &'static (Task, Plan) {
     if zones {
         // the default options
-        return crate::common::shipped_plan("shelf", false);
+        return crate::common::shipped_plan("shelf");
     }
     static OFF: OnceLock<(Task, Plan)> = OnceLock::new();
     OFF.get_or_init(|| {
@@ -444,7 +444,7 @@ fn a_fatigue_only_plan_keeps_the_zones() {
 #[test]
 fn what_would_change_it_moves_the_phase_forced_farthest_beyond_a_zone() {
     let opts = crate::common::held(false);
-    let (t, p) = crate::common::shipped_plan("overhead_drilling", false);
+    let (t, p) = crate::common::shipped_plan("overhead_drilling");
     let excess = |i: usize| -> f64 {
         p.summary.phases[i]
             .outside_zones

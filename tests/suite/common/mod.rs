@@ -501,28 +501,26 @@ pub fn held(baselines: bool) -> posture_opt::plan::PlanOptions {
     }
 }
 
-/// A shipped task (`tasks/NAME.yaml`) and its held plan with the default options, with or without
-/// the baselines: planned once per test run and shared, for the tests that read the same plan
-/// without changing its task or options (a plan is deterministic, tested in
-/// `plan_truth::planning_is_deterministic`).
-pub fn shipped_plan(
-    name: &str,
-    baselines: bool,
-) -> &'static (posture_opt::plan::Task, posture_opt::plan::Plan) {
+/// A shipped task (`tasks/NAME.yaml`) and its held plan with the default options and the three
+/// baselines: planned once per test run and shared, for the tests that read the same plan without
+/// changing its task or options (a plan is deterministic, tested in
+/// `plan_truth::planning_is_deterministic`; the baselines are planned after it and change none of
+/// it).
+pub fn shipped_plan(name: &str) -> &'static (posture_opt::plan::Task, posture_opt::plan::Plan) {
     use std::collections::BTreeMap;
     use std::sync::{Mutex, OnceLock};
     type Cell = OnceLock<(posture_opt::plan::Task, posture_opt::plan::Plan)>;
-    static PLANS: Mutex<BTreeMap<(String, bool), &'static Cell>> = Mutex::new(BTreeMap::new());
+    static PLANS: Mutex<BTreeMap<String, &'static Cell>> = Mutex::new(BTreeMap::new());
     let cell: &'static Cell = PLANS
         .lock()
         .unwrap()
-        .entry((name.to_string(), baselines))
+        .entry(name.to_string())
         .or_insert_with(|| Box::leak(Box::new(OnceLock::new())));
     // planned outside the map's lock: other plans go on meanwhile, the same one waits
     cell.get_or_init(|| {
         let task =
             posture_opt::plan::Task::from_file(root().join(format!("tasks/{name}.yaml"))).unwrap();
-        let plan = posture_opt::plan::plan_task_with(&task, held(baselines)).unwrap();
+        let plan = posture_opt::plan::plan_task_with(&task, held(true)).unwrap();
         (task, plan)
     })
 }
