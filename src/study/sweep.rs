@@ -941,6 +941,37 @@ fn share_text(name: &str, s: &Option<Share>) -> String {
     }
 }
 
+/// How many of the workers able to do the task get each shift verdict ("; of the 6 able, the
+/// shift is not acceptable for 2, caution for 4"), empty when there are none.
+pub fn shift_counts(s: &Sweep) -> String {
+    use crate::assess::verdict::Status;
+    let able: Vec<&WorkerOutcome> = s
+        .workers
+        .iter()
+        .filter(|w| w.can_do && w.could_not_plan.is_empty())
+        .collect();
+    let counts: Vec<String> = [
+        (Status::Exceeded, "not acceptable"),
+        (Status::NotDetermined, "not determined"),
+        (Status::Caution, "conditionally acceptable"),
+        (Status::Acceptable, "acceptable"),
+    ]
+    .into_iter()
+    .filter_map(|(status, words)| {
+        let n = able.iter().filter(|w| w.shift_status == status).count();
+        (n > 0).then(|| format!("{words} for {n}"))
+    })
+    .collect();
+    if counts.is_empty() {
+        return String::new();
+    }
+    format!(
+        "; of the {} able, the shift is {}",
+        able.len(),
+        counts.join(", ")
+    )
+}
+
 /// The sweep as a text table.
 pub fn sweep_table(s: &Sweep) -> String {
     let mut o = String::new();
@@ -1006,9 +1037,10 @@ pub fn sweep_table(s: &Sweep) -> String {
                         None => "no group gives out".to_string(),
                     }
                 };
-                // the shift verdict's status and binding criterion (its details are the plan's)
+                // the shift verdict's status and binding criterion first (its details are the
+                // plan's): being able to do it says nothing of whether it is acceptable
                 format!(
-                    "can do it ({how}); shift: {}",
+                    "shift: {}; physically able to do it ({how})",
                     w.shift_verdict.split(" — ").next().unwrap_or_default()
                 )
             } else {
@@ -1025,9 +1057,10 @@ pub fn sweep_table(s: &Sweep) -> String {
     }
     let _ = writeln!(
         o,
-        "\n{} of {} workers cannot do the task{}",
+        "\n{} of {} workers cannot do the task{}{}",
         s.cannot_do,
         s.workers.len(),
+        shift_counts(s),
         if s.could_not_plan > 0 {
             format!(
                 "; the optimiser could not plan {} (not counted as unable)",

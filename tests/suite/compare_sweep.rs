@@ -954,6 +954,51 @@ fn sweep_a_heavy_load_finds_who_cannot() {
             assert!(p["group"].as_str().is_some_and(|g| !g.is_empty()));
         }
     }
+    // The text and the HTML lead each able worker's row with the shift verdict (a trial read
+    // "can do it" beside an ISO 11226 failure), and the summary counts the verdicts of the able.
+    let sweep: posture_opt::study::sweep::Sweep = serde_json::from_value(s.clone()).unwrap();
+    let table = posture_opt::study::sweep::sweep_table(&sweep);
+    let html = posture_opt::report::html::sweep_report(&sweep, None).unwrap();
+    let able: Vec<&posture_opt::study::sweep::WorkerOutcome> =
+        sweep.workers.iter().filter(|w| w.can_do).collect();
+    for w in &able {
+        let row = table
+            .lines()
+            .find(|l| l.starts_with(&format!("{:<12} ", w.label)))
+            .unwrap();
+        let binding = w.shift_verdict.split(" — ").next().unwrap();
+        assert!(
+            row.contains(&format!("shift: {binding}; physically able to do it (")),
+            "{row}"
+        );
+        assert!(
+            html.contains(&format!(
+                "shift: {}; physically able to do it (",
+                binding.replace('\'', "&#39;")
+            )),
+            "{binding}"
+        );
+    }
+    let count = |status| able.iter().filter(|w| w.shift_status == status).count();
+    use posture_opt::assess::verdict::Status;
+    let mut expected = Vec::new();
+    for (status, words) in [
+        (Status::Exceeded, "not acceptable"),
+        (Status::NotDetermined, "not determined"),
+        (Status::Caution, "conditionally acceptable"),
+        (Status::Acceptable, "acceptable"),
+    ] {
+        if count(status) > 0 {
+            expected.push(format!("{words} for {}", count(status)));
+        }
+    }
+    let summary = format!(
+        "{} of 6 workers cannot do the task; of the {} able, the shift is {}",
+        sweep.cannot_do,
+        able.len(),
+        expected.join(", ")
+    );
+    assert!(table.contains(&summary), "{summary}\n{table}");
     // No order by stature is asserted: the standard population's workers share the 50th
     // strength percentile and strength does not scale with body size (docs/strength.md), so a
     // taller, heavier worker is not a stronger one (measured 2026-12-05 at 22 kg: the P5 and P50

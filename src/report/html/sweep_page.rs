@@ -5,7 +5,7 @@ use super::fmt::{Finding, Level, Table, dur, esc, findings_list, num, opt, pct, 
 use super::svg::{Scale, Svg, nice_ticks, tick_decimals};
 use crate::assess::verdict::Status;
 use crate::body::Sex;
-use crate::study::sweep::{Problem, Share, Sweep, WorkerOutcome, problem_text};
+use crate::study::sweep::{Problem, Share, Sweep, WorkerOutcome, problem_text, shift_counts};
 use std::fmt::Write;
 
 fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
@@ -23,11 +23,12 @@ fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
         );
     }
     if w.can_do && w.problems.is_empty() {
-        if w.lowest_capacity < floor || w.rest_needed_s.is_none() {
-            return (
-                Level::Warn,
+        // how the worker manages the task, and whether a muscle group gives out
+        let (tires, how) = if w.lowest_capacity < floor || w.rest_needed_s.is_none() {
+            (
+                true,
                 format!(
-                    "can do it only by changing posture as the muscles tire: capacity falls to {} (floor {}){}",
+                    "only by changing posture as the muscles tire: capacity falls to {} (floor {}){}",
                     pct(w.lowest_capacity),
                     pct(floor),
                     if w.rest_needed_s.is_none() {
@@ -36,35 +37,40 @@ fn verdict(w: &WorkerOutcome, floor: f64) -> (Level, String) {
                         ""
                     }
                 ),
-            );
-        }
-        match w.minutes_to_exhaustion {
-            Some(m) => (
-                Level::Warn,
-                format!(
-                    "can do it; kept up, a group gives out after {}",
-                    dur(60.0 * m)
+            )
+        } else {
+            match w.minutes_to_exhaustion {
+                Some(m) => (
+                    true,
+                    format!("kept up, a group gives out after {}", dur(60.0 * m)),
                 ),
-            ),
-            None if w.exhaustion_verdict == "not_determined" => (
-                Level::Warn,
-                format!(
-                    "can do it; kept up, {}",
-                    crate::assess::meaning::no_exhaustion_words(
-                        &w.exhaustion_verdict,
-                        w.minutes_followed
-                    )
+                None if w.exhaustion_verdict == "not_determined" => (
+                    true,
+                    format!(
+                        "kept up, {}",
+                        crate::assess::meaning::no_exhaustion_words(
+                            &w.exhaustion_verdict,
+                            w.minutes_followed
+                        )
+                    ),
                 ),
+                None => (false, "no muscle group gives out".to_string()),
+            }
+        };
+        // the shift verdict first: being able to do it says nothing of whether it is acceptable
+        let level = match w.shift_status {
+            Status::Exceeded => Level::Bad,
+            Status::Acceptable if !tires => Level::Ok,
+            _ => Level::Warn,
+        };
+        (
+            level,
+            format!(
+                "shift: {}; physically able to do it ({how})",
+                // the status and binding criterion (the details are the worker's plan's)
+                esc(w.shift_verdict.split(" — ").next().unwrap_or_default())
             ),
-            None if w.shift_status == Status::Acceptable => (
-                Level::Ok,
-                "can do it, indefinitely at this pace (every shift criterion acceptable)".into(),
-            ),
-            None => (
-                Level::Warn,
-                format!("can do it; shift verdict: {}", esc(&w.shift_verdict)),
-            ),
-        }
+        )
     } else {
         let why: Vec<String> = w.problems.iter().map(|p| esc(&problem_text(p))).collect();
         (
@@ -301,10 +307,23 @@ pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
         pct(s.capacity_floor),
         env!("CARGO_PKG_VERSION")
     );
+    let shifts: Vec<Status> = s
+        .workers
+        .iter()
+        .filter(|w| w.can_do && w.could_not_plan.is_empty())
+        .map(|w| w.shift_status)
+        .collect();
     let lv = if n == 0 {
         Level::Info
     } else if s.cannot_do == 0 {
-        Level::Ok
+        // able, each of them: the shift verdicts say whether it is acceptable
+        if shifts.contains(&Status::Exceeded) {
+            Level::Bad
+        } else if shifts.iter().all(|&x| x == Status::Acceptable) {
+            Level::Ok
+        } else {
+            Level::Warn
+        }
     } else if s.cannot_do == n {
         Level::Bad
     } else {
@@ -312,10 +331,11 @@ pub fn body(s: &Sweep, task: Option<&crate::plan::Task>) -> String {
     };
     let _ = write!(
         o,
-        "<div class=\"verdict {}\">{} of {} workers cannot do the task{}{}.</div>",
+        "<div class=\"verdict {}\">{} of {} workers cannot do the task{}{}{}.</div>",
         lv.class(),
         s.cannot_do,
         n,
+        esc(&shift_counts(s)),
         if s.could_not_plan > 0 {
             format!(
                 "; the optimiser could not plan {} (not counted as unable: see below)",
