@@ -239,6 +239,9 @@ pub enum Change {
         elbow_height_m: f64,
         /// The worker sits: the elbow height is the seated one.
         seated: bool,
+        /// The box the work rests on (a shelf board, a bench), moved with it and with the
+        /// other work on it, then the boxes standing on it (a bin on the bench); empty: none.
+        surfaces: Vec<String>,
     },
     /// A phase's work (and every phase doing the same work) moved horizontally toward the
     /// normal working area in front of the worker.
@@ -250,6 +253,9 @@ pub enum Change {
         /// The work's horizontal distance from the normal working area's centre before the
         /// move \[m\].
         beyond_m: f64,
+        /// The box the work rests on (a bin, a cart), moved with it where the work would
+        /// otherwise leave it, then the boxes standing on it; empty: none.
+        surfaces: Vec<String>,
     },
     /// What a phase looks at (its `gaze_m`, and every phase looking at the same point) moved up
     /// or down to where the normal line of sight meets it.
@@ -417,8 +423,9 @@ pub fn phase_to_move(task: &Task, plan: &Plan, a: &Assessment) -> Option<usize> 
         .max_by(|&x, &y| load(x).total_cmp(&load(y)))
 }
 
-/// Moves phase `p`'s targets toward elbow height, plans the changed task with `opts` (without
-/// baselines) and compares. `None` when the phase has no target or sits near elbow height.
+/// Moves phase `p`'s targets toward elbow height (with the shelf or bench they rest on and the
+/// other work there, [`work_moved`]), plans the changed task with `opts` (without baselines) and
+/// compares. `None` when the phase has no target or sits near elbow height.
 pub fn what_if(
     task: &Task,
     plan: &Plan,
@@ -444,12 +451,16 @@ pub fn what_if(
         return Ok(None);
     }
     let dz = (elbow - z).clamp(-MAX_MOVE_M, MAX_MOVE_M);
-    let changed = work_moved(task, p, Vector3::new(0.0, 0.0, dz));
+    let Some((changed, surfaces)) = work_moved(task, p, Vector3::new(0.0, 0.0, dz), Surface::Moves)
+    else {
+        return Ok(None);
+    };
     let change = Change::MoveWork {
         phase: ph.name.clone(),
         dz_m: dz,
         elbow_height_m: elbow,
         seated,
+        surfaces,
     };
     plan_changed(change, &changed, plan, a, opts, floor).map(Some)
 }
@@ -477,13 +488,125 @@ fn normal_area_m(task: &Task, plan: &Plan, h: usize) -> Option<Vector3<f64>> {
     Some(e + forward * (g - e).norm())
 }
 
+/// Largest height of a hand target above the top of the box it works on \[m\]: ASSUMPTION, the
+/// height of a tall box or tote grasped at its top (a target higher above a surface is work in
+/// the air, not on it).
+pub const SUPPORT_GAP_M: f64 = 0.30;
+
+/// How far in front of (or beside) a box's outline a hand target still works on the box \[m\]:
+/// ASSUMPTION, a hand setting a box down at a shelf's front edge holds it a few centimetres
+/// short of the edge (the shipped shelves' targets lie 5 cm in front of their boards).
+pub const SUPPORT_EDGE_M: f64 = 0.10;
+
+/// Whether `local` (a point in a box's frame) lies over the box's outline, seen from above,
+/// within `edge_m` of it.
+fn over_outline(local: &nalgebra::Point3<f64>, size_m: &[f64; 3], edge_m: f64) -> bool {
+    local.x.abs() <= 0.5 * size_m[0] + edge_m && local.y.abs() <= 0.5 * size_m[1] + edge_m
+}
+
+/// The box obstacle that work at `point` rests on: the one whose top lies under the point (the
+/// point over its outline, [`over_outline`]) by at most [`SUPPORT_GAP_M`], the nearest below.
+/// Only upright boxes (no roll or pitch) count.
+fn support_of(task: &Task, point: &Vector3<f64>) -> Option<usize> {
+    use crate::workstation::ShapeSpec;
+    task.workstation
+        .obstacles
+        .iter()
+        .enumerate()
+        .filter_map(|(i, o)| {
+            let ShapeSpec::Box { size_m } = o.spec.shape else {
+                return None;
+            };
+            let [roll, pitch, _] = o.spec.rpy_rad;
+            if roll.abs() > 1e-9 || pitch.abs() > 1e-9 {
+                return None;
+            }
+            let local = o
+                .world_from_obstacle()
+                .inverse_transform_point(&(*point).into());
+            let gap = local.z - 0.5 * size_m[2];
+            (over_outline(&local, &size_m, SUPPORT_EDGE_M) && (0.0..=SUPPORT_GAP_M).contains(&gap))
+                .then_some((i, gap))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, _)| i)
+}
+
+/// When the box the work rests on moves with it.
+#[derive(Clone, Copy, PartialEq)]
+enum Surface {
+    /// Always: the work moves up or down, and the shelf or bench with it.
+    Moves,
+    /// Only when the moved work would leave its outline (a bin or a cart brought closer); work
+    /// moved across a bench stays on the bench.
+    MovesIfLeft,
+}
+
 /// The task with phase `p`'s work moved by `step`: its hands' targets and held object, and those
-/// of every phase doing the same work (they share one place). The obstacles stay.
-fn work_moved(task: &Task, p: usize, step: Vector3<f64>) -> Task {
+/// of every phase doing the same work (they share one place); and, as `surface` says, the box
+/// that work rests on ([`support_of`]) with every phase's work on it, so that no work floats
+/// above or sinks into its surface, and the boxes standing on it ([`stands_on`]). Returns the
+/// changed task and the moved boxes' names, the support first; `None` when a moved box would
+/// leave the coordinates a task accepts.
+fn work_moved(
+    task: &Task,
+    p: usize,
+    step: Vector3<f64>,
+    surface: Surface,
+) -> Option<(Task, Vec<String>)> {
     let mut changed = task.clone();
     let ph = &task.phases[p];
-    for q in &mut changed.phases {
-        if q.same_work(ph) {
+    let support = ph.targets_m.iter().flatten().find_map(|t| {
+        let i = support_of(task, t)?;
+        let o = &task.workstation.obstacles[i];
+        let stays_on = || {
+            let moved = o
+                .world_from_obstacle()
+                .inverse_transform_point(&(t + step).into());
+            let crate::workstation::ShapeSpec::Box { size_m } = o.spec.shape else {
+                return false;
+            };
+            // still over it (a part slid across a bench), not merely at its edge
+            over_outline(&moved, &size_m, 0.0)
+        };
+        (surface == Surface::Moves || !stays_on()).then_some(i)
+    });
+    // raised or lowered, a box moves with what it stands on (a bin on a bench: the bench moves)
+    let support = support.map(|mut i| {
+        if surface == Surface::Moves {
+            // (each box once: thin boxes side by side could each count as standing on the other)
+            let boxes = &task.workstation.obstacles;
+            let mut seen = vec![i];
+            while let Some(b) =
+                (0..boxes.len()).find(|&b| !seen.contains(&b) && stands_on(&boxes[i], &boxes[b]))
+            {
+                seen.push(b);
+                i = b;
+            }
+        }
+        i
+    });
+    // the support and every box standing on it (a bin on the bench), and on those in turn
+    let mut moved: Vec<usize> = support.into_iter().collect();
+    let mut k = 0;
+    while k < moved.len() {
+        let below = &task.workstation.obstacles[moved[k]];
+        for (j, o) in task.workstation.obstacles.iter().enumerate() {
+            if !moved.contains(&j) && stands_on(o, below) {
+                moved.push(j);
+            }
+        }
+        k += 1;
+    }
+    let moves = |q: &crate::plan::task::Phase| {
+        q.same_work(ph)
+            || q.targets_m
+                .iter()
+                .flatten()
+                .any(|t| support_of(task, t).is_some_and(|i| moved.contains(&i)))
+    };
+    for (q, orig) in changed.phases.iter_mut().zip(&task.phases) {
+        if moves(orig) {
             for t in q.targets_m.iter_mut().flatten() {
                 *t += step;
             }
@@ -494,7 +617,42 @@ fn work_moved(task: &Task, p: usize, step: Vector3<f64>) -> Task {
             }
         }
     }
-    changed
+    for &i in &moved {
+        let mut spec = task.workstation.obstacles[i].spec.clone();
+        for (c, d) in spec.position_m.iter_mut().zip(step.iter()) {
+            *c += d;
+        }
+        changed.workstation.obstacles[i] = crate::workstation::Obstacle::new(spec).ok()?;
+    }
+    Some((
+        changed,
+        moved
+            .iter()
+            .map(|&i| task.workstation.obstacles[i].spec.name.clone())
+            .collect(),
+    ))
+}
+
+/// Whether upright box `o` stands on upright box `below`: its bottom within 1 cm of the other's
+/// top, its centre over the other's outline.
+fn stands_on(o: &crate::workstation::Obstacle, below: &crate::workstation::Obstacle) -> bool {
+    use crate::workstation::ShapeSpec;
+    let (ShapeSpec::Box { size_m: a }, ShapeSpec::Box { size_m: b }) =
+        (&o.spec.shape, &below.spec.shape)
+    else {
+        return false;
+    };
+    let upright = |x: &crate::workstation::Obstacle| {
+        x.spec.rpy_rad[0].abs() <= 1e-9 && x.spec.rpy_rad[1].abs() <= 1e-9
+    };
+    let centre = nalgebra::Point3::from(o.spec.position_m);
+    let local = below.world_from_obstacle().inverse_transform_point(&centre);
+    upright(o)
+        && upright(below)
+        && ((o.spec.position_m[2] - 0.5 * a[2]) - (below.spec.position_m[2] + 0.5 * b[2])).abs()
+            <= 0.01
+        && local.x.abs() <= 0.5 * b[0]
+        && local.y.abs() <= 0.5 * b[1]
 }
 
 /// The horizontal move from phase `p`'s work (its hand targets' mean) to the centre of its
@@ -519,8 +677,9 @@ fn toward_normal_area(task: &Task, plan: &Plan, p: usize) -> Option<Vector3<f64>
 /// (horizontally, [`toward_normal_area`]; every phase doing the same work with it) to within
 /// [`NEAR_ELBOW_M`] of that area's centre, by at most [`MAX_CLOSER_M`], plans the changed task
 /// with `opts` (without baselines) and compares. `None` when every phase's work lies within
-/// [`NEAR_ELBOW_M`] of it. The obstacles stay: the work moves, not the surface or bin it came
-/// from (a change that then collides is not advised).
+/// [`NEAR_ELBOW_M`] of it. The bin or cart the work rests on moves with it only where the work
+/// would otherwise leave it ([`work_moved`]); other obstacles stay (a change that then collides
+/// is not advised).
 pub fn bring_work_closer(
     task: &Task,
     plan: &Plan,
@@ -539,12 +698,15 @@ pub fn bring_work_closer(
         return Ok(None);
     }
     let step = d * ((beyond_m - NEAR_ELBOW_M).min(MAX_CLOSER_M) / beyond_m);
-    let changed = work_moved(task, p, step);
+    let Some((changed, surfaces)) = work_moved(task, p, step, Surface::MovesIfLeft) else {
+        return Ok(None);
+    };
     let change = Change::BringWorkCloser {
         phase: task.phases[p].name.clone(),
         dx_m: step.x,
         dy_m: step.y,
         beyond_m,
+        surfaces,
     };
     plan_changed(change, &changed, plan, a, opts, floor).map(Some)
 }
@@ -774,6 +936,7 @@ mod tests {
                 dz_m,
                 elbow_height_m: 1.1,
                 seated: false,
+                surfaces: vec![],
             },
             before: figures(100.0),
             after: figures(after_u),

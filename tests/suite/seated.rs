@@ -277,6 +277,7 @@ fn a_seated_workers_work_moves_toward_the_seated_elbow_height() {
         dz_m,
         elbow_height_m,
         seated,
+        surfaces,
         ..
     } = w.change
     else {
@@ -284,6 +285,11 @@ fn a_seated_workers_work_moves_toward_the_seated_elbow_height() {
     };
     assert!(seated);
     assert_eq!(elbow_height_m, z);
+    // the bench top comes down with the work, and the parts bin standing on it
+    assert_eq!(
+        surfaces,
+        vec!["bench top".to_string(), "parts bin".to_string()]
+    );
     assert!(
         dz_m < 0.0,
         "the work moves down toward the seated elbow: {dz_m}"
@@ -330,6 +336,7 @@ fn the_work_farthest_from_the_normal_area_is_brought_closer() {
         dx_m,
         dy_m,
         beyond_m,
+        surfaces,
     } = &w.change
     else {
         panic!("{:?}", w.change)
@@ -352,4 +359,7 @@ fn the_work_farthest_from_the_normal_area_is_brought_closer() {
         .normalize();
     assert!((step.xy().normalize() - dir).norm() < 1e-9);
     assert!(dy_m > &0.0, "the bin comes in from the right side: {dy_m}");
+    // the part would leave the bin (0.25 m across): the bin comes with it, the table stays
+    assert!(dy_m.abs() > 0.125);
+    assert_eq!(surfaces, &["bin"]);
 }

@@ -773,6 +773,39 @@ fn planned_by_hand_as(
     p
 }
 
+/// Work moved up or down takes the shelf board it rests on with it, and the other work on that
+/// board (a trial's "closer" what-if floated a box above its shelf): a box placed on a board at
+/// 1.45 m, 0.34 m above this worker's elbow, is lowered 0.10 m with the board and the tote on it;
+/// the work beside it on the same board comes down too; work on the bench below stays. The same change made by hand
+/// gives the same plan.
+#[test]
+fn work_moved_up_or_down_takes_its_shelf_with_it() {
+    let text = |board_z: f64, place_z: f64, beside_z: f64| {
+        format!(
+            "name: shelf\nworker: {{sex: male, stature_m: 1.755, mass_kg: 78.0}}\nworkstation:\n  obstacles:\n    - {{name: board, box: {{size_m: [0.30, 0.80, 0.02]}}, position_m: [0.45, -0.10, {board_z:.2}]}}\n    - {{name: tote, box: {{size_m: [0.20, 0.20, 0.10]}}, position_m: [0.50, -0.40, {:.2}]}}\n    - {{name: bench, box: {{size_m: [0.40, 0.60, 0.04]}}, position_m: [0.40, 0.45, 0.88]}}\n    - {{name: floor, plane: {{normal: [0, 0, 1]}}}}\nphases:\n  - {{name: pick, target_m: [0.35, 0.40, 0.95], load_kg: 1.0, duration_s: 2.0}}\n  - {{name: place, target_m: [0.40, -0.20, {place_z:.2}], load_kg: 1.0, duration_s: 4.0}}\n  - {{name: tidy, target_m: [0.40, 0.15, {beside_z:.2}], duration_s: 2.0}}\nrest_s: 2.0\ncycles: 3\n",
+            board_z + 0.06
+        )
+    };
+    let (t, p, a, opts) = planned_for_what_if(&text(1.39, 1.45, 1.45), "shelf.yaml");
+    let w = posture_opt::study::what_if::what_if(&t, &p, &a, opts, 0.7)
+        .unwrap()
+        .expect("work 0.34 m above the elbow is moved");
+    let Change::MoveWork {
+        phase,
+        dz_m,
+        surfaces,
+        ..
+    } = &w.change
+    else {
+        panic!("{:?}", w.change)
+    };
+    assert!(phase == "place" || phase == "tidy", "{phase}");
+    assert!((dz_m + 0.10).abs() < 1e-12, "{dz_m}");
+    // the tote standing on the board comes down with it
+    assert_eq!(surfaces, &["board", "tote"]);
+    planned_by_hand_as(&w, &text(1.29, 1.35, 1.35), opts);
+}
+
 /// What the worker looks at, moved where the normal line of sight meets it: a dial 0.60 m above
 /// the hands' work tilts the head back beyond ISO 11226's 5°; the what-if lowers the gaze point
 /// (and only it) by `eye.z − d·tan 15° − z` (d its horizontal distance from the planned eyes,
@@ -833,11 +866,13 @@ fn what_if_moves_the_work_toward_elbow_height_and_replans() {
         dz_m,
         elbow_height_m,
         seated,
+        surfaces,
     } = &w.change
     else {
         panic!("{:?}", w.change)
     };
     assert_eq!(phase, "hold");
+    assert!(surfaces.is_empty(), "no box under the work: {surfaces:?}");
     assert!(!seated);
     assert!((elbow_height_m - 0.630 * 1.755).abs() < 1e-12);
     assert!((dz_m - 0.10).abs() < 1e-12, "{dz_m}");

@@ -734,6 +734,19 @@ pub fn findings(
     f
 }
 
+/// " (and 'bench top', which it rests on, with 'parts bin')", or nothing.
+fn surface_words(surfaces: &[String]) -> String {
+    match surfaces {
+        [] => String::new(),
+        [support] => format!(" (and {}, which it rests on)", q(support)),
+        [support, more @ ..] => format!(
+            " (and {}, which it rests on, with {})",
+            q(support),
+            more.iter().map(|m| q(m)).collect::<Vec<_>>().join(", ")
+        ),
+    }
+}
+
 /// A what-if's change in words, for a sentence that goes on "would …" or with a comma.
 fn change_words(c: &crate::study::what_if::Change) -> String {
     use crate::study::what_if::Change;
@@ -743,9 +756,11 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
             dz_m,
             elbow_height_m,
             seated,
+            surfaces,
         } => format!(
-            "placing the work of {} {} {}, toward this worker’s {}elbow height ({})",
+            "placing the work of {}{} {} {}, toward this worker’s {}elbow height ({})",
             q(phase),
+            surface_words(surfaces),
             mm(dz_m.abs()),
             if *dz_m > 0.0 { "up" } else { "down" },
             if *seated { "seated " } else { "" },
@@ -756,9 +771,11 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
             dx_m,
             dy_m,
             beyond_m,
+            surfaces,
         } => format!(
-            "placing the work of {} {} closer, toward the normal working area in front of the worker (the hand's sweep with the elbow at the side, centred {} from the work)",
+            "placing the work of {}{} {} closer, toward the normal working area in front of the worker (the hand's sweep with the elbow at the side, centred {} from the work)",
             q(phase),
+            surface_words(surfaces),
             mm(dx_m.hypot(*dy_m)),
             mm(*beyond_m)
         ),
