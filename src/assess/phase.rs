@@ -138,13 +138,17 @@ pub fn describe(a: &BodyAngles) -> String {
             } else {
                 format!("{:.0}° behind the trunk", -arm.upper_arm_flexion_deg)
             };
+            // and its elevation from the vertical, the angle ISO 11226 and EN 1005-4 judge (a
+            // trial read "raised 56° forward of the trunk" here and "raised 61° from the
+            // vertical" in the verdict for the same arm)
             parts.push(format!(
-                "{name} upper arm {sagittal}{}",
+                "{name} upper arm {sagittal}{} ({:.0}° from the vertical)",
                 if arm.upper_arm_abduction_deg >= 20.0 {
                     format!(", {:.0}° out to the side", arm.upper_arm_abduction_deg)
                 } else {
                     String::new()
-                }
+                },
+                arm.upper_arm_elevation_deg
             ));
         }
     }
