@@ -194,7 +194,7 @@ impl<'t> Planner<'t> {
                 None => groups.push(vec![p]),
             }
         }
-        let phase_zones = zones::phase_limits(task);
+        let phase_zones = zones::planning_limits(task);
         let group_zones: Vec<ZoneLimits> = groups
             .iter()
             .map(|m| {

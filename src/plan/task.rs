@@ -197,8 +197,11 @@ pub enum HandName {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HandTargetsFile {
+    /// The right hand's target \[m\]; absent: the right hand is free (it hangs, unloaded, its
+    /// upper arm within 10° of the vertical).
     #[serde(default)]
     pub right_m: Option<[f64; 3]>,
+    /// The left hand's target \[m\]; absent: the left hand is free.
     #[serde(default)]
     pub left_m: Option<[f64; 3]>,
 }
@@ -223,7 +226,8 @@ pub struct ObjectFile {
 #[serde(deny_unknown_fields)]
 pub struct PhaseFile {
     pub name: String,
-    /// One-handed: the hand's target \[m\], world frame.
+    /// One-handed: the hand's target \[m\], world frame. The other hand is free: it hangs,
+    /// unloaded, its upper arm within 10° of the vertical.
     #[serde(default)]
     pub target_m: Option<[f64; 3]>,
     /// The hand of a one-handed phase (default right).

@@ -95,6 +95,18 @@ pub const NECK_SIDE_BEND_DEG: f64 = 10.0;
 /// the side is a neck twist unless the feet or the trunk turn.
 pub const NECK_TWIST_DEG: f64 = 45.0;
 
+/// The upper arm of a free hand (one with no target in the phase) is kept within this angle of
+/// hanging straight down \[deg\]. The task format says a free hand hangs, unloaded; without this
+/// limit the plans swung the free arm 25–60° back and out as a counterweight (shelf's 'pick from
+/// cart': the left upper arm 32° behind the trunk and 22° out, 60° from the vertical, at the
+/// standards' movement limit), since spreading the load over more muscle groups lowers the sum of
+/// their fatigue; no ergonomist would plan that (secondary summaries of ISO 11226:2000 list
+/// upper-arm retroflexion among the arm positions it does not accept; we could not check the
+/// standard's text). ASSUMPTION: 10°, as the trunk's side bending and
+/// twist, what an observer would not see; a planner limit, not a standard's: it is not reported
+/// as a zone excess (the standards' 20° from ISO 11226 Fig. 3 is).
+pub const FREE_ARM_DEG: f64 = 10.0;
+
 /// Number of zone rows per phase.
 pub const ZONE_ROWS: usize = 25;
 
@@ -314,6 +326,22 @@ impl ZoneLimits {
             max_rad: deg.map(f64::to_radians),
             movement,
         }
+    }
+
+    /// The same with the upper arm of each free hand (right, left) held within [`FREE_ARM_DEG`]
+    /// of hanging straight down.
+    pub fn with_free_arms_hanging(&self, free: [bool; 2]) -> Self {
+        let mut z = *self;
+        for (zone, free) in [Zone::RightUpperArm, Zone::LeftUpperArm]
+            .into_iter()
+            .zip(free)
+        {
+            let i = zone as usize;
+            if free {
+                z.max_rad[i] = z.max_rad[i].min(FREE_ARM_DEG.to_radians());
+            }
+        }
+        z
     }
 
     /// The tighter of two phases' limits (phases sharing one posture).
@@ -616,10 +644,21 @@ impl ZoneWork {
     }
 }
 
-/// Each phase's zone limits from its hold ([`Task::holds`]).
+/// Each phase's zone limits from its hold ([`Task::holds`]): the standards' limits, which the
+/// plan reports excesses against.
 pub fn phase_limits(task: &Task) -> Vec<ZoneLimits> {
     task.holds()
         .iter()
         .map(|&(hold_s, _)| ZoneLimits::for_hold(hold_s))
+        .collect()
+}
+
+/// Each phase's limits as the planner keeps them: the standards' ([`phase_limits`]) with the
+/// upper arm of a free hand (no target in the phase) held within [`FREE_ARM_DEG`] of hanging.
+pub fn planning_limits(task: &Task) -> Vec<ZoneLimits> {
+    phase_limits(task)
+        .into_iter()
+        .zip(&task.phases)
+        .map(|(z, ph)| z.with_free_arms_hanging(ph.targets_m.each_ref().map(Option::is_none)))
         .collect()
 }

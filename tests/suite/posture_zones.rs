@@ -16,7 +16,7 @@
 use posture_opt::assess::angles::BodyAngles;
 use posture_opt::body::{StaticsData, forward_kinematics};
 use posture_opt::plan::zones::{
-    ARM_HOLD, HEAD_HOLD, TRUNK_HOLD, ZONE_ROWS, Zone, ZoneLimits, ZoneWork,
+    ARM_HOLD, FREE_ARM_DEG, HEAD_HOLD, TRUNK_HOLD, ZONE_ROWS, Zone, ZoneLimits, ZoneWork,
 };
 use posture_opt::plan::{Plan, PlanOptions, Task, plan_task_with};
 use posture_opt::study::what_if::Change;
@@ -284,6 +284,32 @@ fn the_limits_are_the_standards_holding_time_lines_read_backwards() {
     }
 }
 
+/// The planner's limits are the standards' with a free hand's upper arm held to
+/// [`FREE_ARM_DEG`]: on the one-handed shelf the left arm's row is 10° in every phase and the
+/// right arm keeps its hold's limit; on the two-handed shelf both keep theirs.
+#[test]
+fn a_free_hands_arm_is_limited_to_hanging_and_no_other() {
+    use posture_opt::plan::zones::{phase_limits, planning_limits};
+    let (r, l) = (Zone::RightUpperArm as usize, Zone::LeftUpperArm as usize);
+    let deg = |z: &ZoneLimits, i: usize| z.max_rad[i].to_degrees();
+    let one = task("shelf.yaml");
+    for (ph, (std, plan)) in one
+        .phases
+        .iter()
+        .zip(phase_limits(&one).iter().zip(planning_limits(&one)))
+    {
+        assert!(ph.targets_m[1].is_none() && ph.targets_m[0].is_some());
+        assert!((deg(&plan, l) - FREE_ARM_DEG).abs() < 1e-9, "{}", ph.name);
+        assert!(deg(std, l) >= 20.0, "{}", ph.name);
+        assert_eq!(deg(&plan, r), deg(std, r), "{}", ph.name);
+        for i in (0..ZONE_ROWS).filter(|&i| i != l) {
+            assert_eq!(plan.max_rad[i], std.max_rad[i], "{} row {i}", ph.name);
+        }
+    }
+    let two = task("shelf_two_hands.yaml");
+    assert_eq!(phase_limits(&two), planning_limits(&two));
+}
+
 fn shelf_plan(zones: bool) -> &'static (Task, Plan) {
     if zones {
         // the default options
@@ -371,6 +397,46 @@ fn planned_postures_keep_the_zones_the_targets_allow_and_report_the_rest() {
         let reported: Vec<&str> = ph.outside_zones.iter().map(|z| z.what.as_str()).collect();
         assert_eq!(beyond, reported, "phase '{}'", ph.phase);
     }
+}
+
+/// A free hand hangs (`plan::zones::FREE_ARM_DEG`): in every phase of the shipped one-handed
+/// tasks the upper arm of the hand without a target stays within 10° of the vertical, measured by
+/// the assessment's angles (the standing plans swung it 25–60° back as a counterweight before;
+/// the seated one kept it within 4° on its own).
+#[test]
+fn a_free_hand_hangs() {
+    let mut checked = 0;
+    for name in [
+        "shelf",
+        "shelf_lowered",
+        "shelf_high",
+        "shelf_heavy",
+        "bench_assembly",
+        "overhead_drilling",
+        "side_transfer",
+        "bench_seated",
+    ] {
+        let (t, p) = crate::common::shipped_plan(name);
+        let mut data = StaticsData::new(&t.model, 4);
+        for (ph, planned) in t.phases.iter().zip(&p.summary.phases) {
+            let a = BodyAngles::measure(&t.model, &mut data, &planned.q_rad, None).unwrap();
+            for (target, arm, side) in [
+                (&ph.targets_m[0], &a.right, "right"),
+                (&ph.targets_m[1], &a.left, "left"),
+            ] {
+                if target.is_none() {
+                    checked += 1;
+                    assert!(
+                        arm.upper_arm_elevation_deg <= FREE_ARM_DEG + 0.05,
+                        "{name} '{}': the free {side} upper arm {:.1}° from the vertical",
+                        ph.name,
+                        arm.upper_arm_elevation_deg
+                    );
+                }
+            }
+        }
+    }
+    assert!(checked >= 30, "{checked} free arms checked");
 }
 
 /// The zones are constraints, not comfort: a fatigue-only plan keeps them too (only

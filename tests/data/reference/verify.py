@@ -24,7 +24,10 @@
    nothing);
 9. held objects: the arms (links on one hand's path to the root only), the held-box pairs per
    distinct phase, their distances vs brute-force sampling and Jacobian rows vs finite
-   differences, and the feasibility report (a box on the trunk violates, one at a hand does not).
+   differences, and the feasibility report (a box on the trunk violates, one at a hand does not);
+10. a free hand's upper arm (statement of 2026-12-07, session 15): the arm row of a hand the
+   phase gives no target limited to min(hold's limit, 10 deg) (shelf, bench_assembly: the left;
+   shelf_two_hands: neither), the row's value at and past it, both limits in the evaluation.
 """
 import json
 import math
@@ -1414,6 +1417,101 @@ def check_held_objects():
         "distances vs sampling, Jacobian rows vs FD, feasibility report", out, ok)
 
 
+def check_free_arm_limit():
+    """Statement of 2026-12-07 (session 15): the upper-arm row of a free hand (a hand the phase
+    gives no target) is limited to min(the hold's limit, 10 deg); the hand with a target keeps
+    the hold's limit. shelf and bench_assembly give only the right hand targets (the left is
+    free in every phase); shelf_two_hands holds an object with both hands (both keep the hold's
+    60 deg); a phase with a left-hand target only frees the right arm; the evaluation reports
+    the limit and, as limit_hold_deg, the hold's limit (the row above)."""
+    from reference import zones as Z
+    out = {}
+    ok = True
+    d10, d60 = 10.0, 60.0
+    for key, exp_r, exp_l in (("shelf", d60, d10), ("bench_assembly", d60, d10),
+                              ("shelf_two_hands", d60, d60)):
+        t = M.load_task(key)
+        pr = M.Problem(t, zones=True)
+        per = {}
+        for gi, g in enumerate(t.groups):
+            L = np.degrees(pr.zone_limits[gi])
+            Lh = np.degrees(pr.zone_limits_hold[gi])
+            hands = sorted(t.phases[[p.group for p in t.phases].index(gi)].targets)
+            per[g["name"]] = dict(hands_with_targets=hands, right_arm_deg=float(L[6]),
+                                  left_arm_deg=float(L[7]), hold_right_deg=float(Lh[6]),
+                                  hold_left_deg=float(Lh[7]))
+            other = [i for i in range(Z.NROW) if i not in Z.ARM_ROWS]
+            ok = ok and abs(L[6] - exp_r) < 1e-9 and abs(L[7] - exp_l) < 1e-9 \
+                and abs(Lh[6] - d60) < 1e-9 and abs(Lh[7] - d60) < 1e-9 \
+                and np.array_equal(L[other], Lh[other])
+        out[key] = per
+    # a phase with a left-hand target only (the right hand free), and a long hold (arm 20 deg
+    # from 3 min: the free arm keeps 10 deg; a hold's limit below 10 deg does not occur)
+    class _Ph:
+        pass
+    ph = _Ph()
+    ph.targets = {"l": np.zeros(3)}
+    cases = {}
+    for hold in (2.0, 10.0, 150.0, 600.0):
+        L = np.degrees(Z.limits_for_phase(ph, hold))
+        Lh = np.degrees(Z.limits_for_hold(hold))
+        cases[f"left target only, hold {hold} s: right, left arm [deg]"] = [float(L[6]), float(L[7])]
+        ok = ok and abs(L[6] - min(Lh[6], d10)) < 1e-9 and abs(L[7] - Lh[7]) < 1e-9
+    ph.targets = {"r": np.zeros(3), "l": np.zeros(3)}
+    L = np.degrees(Z.limits_for_phase(ph, 150.0))
+    cases["both targets, hold 150 s: right, left arm [deg]"] = [float(L[6]), float(L[7])]
+    ok = ok and abs(L[6] - 30.0) < 1e-9 and abs(L[7] - 30.0) < 1e-9
+    ph.targets = {}
+    L = np.degrees(Z.limits_for_phase(ph, 150.0, free_arm=False))
+    cases["no targets, free_arm=False, hold 150 s: right, left arm [deg]"] = [float(L[6]), float(L[7])]
+    ok = ok and abs(L[6] - 30.0) < 1e-9 and abs(L[7] - 30.0) < 1e-9
+    out["limits_for_phase"] = cases
+    # the row at the free arm's limit: (cos L - cos theta)/sin L = 0 at theta = 10 deg, about
+    # theta - L [rad] at 11 deg; and Problem.evaluate reports both limits
+    t = M.load_task("shelf")
+    pr = M.Problem(t, zones=True)
+    zm = pr.zm
+    q = t.rest_q.copy()
+    b = t.body
+    row = {}
+    for th_deg in (10.0, 11.0):
+        # raise the left upper arm forward until its elevation is th_deg (bisection on the
+        # shoulder flexion joint, the rest at the rest posture)
+        j = b.qidx["l_shoulder_flexion"]
+        lo, hi = b.lower[j], b.upper[j]
+        f = lambda x: (lambda qq: np.degrees(zm.angles(qq)[7]))(np.r_[q[:j], x, q[j + 1:]])
+        base = f(q[j])
+        # search the side of the current value that increases the elevation
+        xs = np.linspace(lo, hi, 401)
+        vals = np.array([f(x) for x in xs])
+        sc = np.nonzero(np.sign(vals[:-1] - th_deg) != np.sign(vals[1:] - th_deg))[0]
+        k = int(sc[np.argmin(np.abs(xs[sc] - q[j]))])   # the crossing nearest the rest value
+        a, c = xs[k], xs[k + 1]
+        for _ in range(80):
+            m = 0.5 * (a + c)
+            if (f(a) - th_deg) * (f(m) - th_deg) <= 0:
+                c = m
+            else:
+                a = m
+        qq = q.copy()
+        qq[j] = 0.5 * (a + c)
+        g = zm.rows(qq, pr.zone_limits[0])[7]
+        row[th_deg] = float(g)
+        if th_deg == 11.0:
+            rep = pr.evaluate([qq] * t.P)
+            z = rep["phases"][0]["zones"][7]
+            out["shelf evaluate, left arm at 11 deg: limit, hold limit, excess, excess vs hold [deg]"] = [
+                z["limit_deg"], z["limit_hold_deg"], z["excess_deg"], z["excess_hold_deg"]]
+            ok = ok and abs(z["limit_deg"] - 10.0) < 1e-9 and abs(z["limit_hold_deg"] - 60.0) < 1e-9 \
+                and abs(z["excess_deg"] - 1.0) < 1e-6 and z["excess_hold_deg"] == 0.0
+        out[f"rest elevation {base:.3f} deg; left arm row at {th_deg} deg"] = float(g)
+    exp11 = (math.cos(math.radians(10.0)) - math.cos(math.radians(11.0))) / math.sin(math.radians(10.0))
+    out["left arm row at 11 deg: expected (cos 10 - cos 11)/sin 10 (about 1 deg in rad x 1.05)"] = exp11
+    ok = ok and abs(row[10.0]) < 1e-9 and abs(row[11.0] - exp11) < 1e-9
+    rec("free hand's upper arm (statement of 2026-12-07): limit min(hold's, 10 deg) on the row of "
+        "a hand without a target, the other arm and rows unchanged, evaluate reports both", out, ok)
+
+
 if __name__ == "__main__":
     check_fatigue()
     check_fatigue_grad()
@@ -1428,6 +1526,7 @@ if __name__ == "__main__":
     check_gaze_and_zone_jacobians()
     check_turn_rows()
     check_held_objects()
+    check_free_arm_limit()
     here = os.path.dirname(os.path.abspath(__file__))
     out = os.path.join(here, "results", "verification.json")
     if "--out" in sys.argv:

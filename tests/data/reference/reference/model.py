@@ -868,6 +868,9 @@ class Problem:
         self.Z = Z
         self.zm = Z.ZoneModel(self.body)
         self.zone_limits, self.holds = Z.group_limits(task)
+        # the hold's limits alone (without the free hand's 10 deg, statement of 2026-12-07):
+        # the "row above" against which the statement's plan reports zone excesses
+        self.zone_limits_hold, _ = Z.group_limits(task, free_arm=False)
         self.gaze_points = Z.group_gaze_points(task) if self.zm.has_gaze else [[] for _ in range(task.P)]
         # rest loads (no hand load)
         tau, p = statics(self.body, task.rest_q, np.zeros(3), np.zeros(3))
@@ -1002,10 +1005,15 @@ class Problem:
                 L = self.zone_limits[gi]
                 th = self.zm.angles(q)
                 g = self.zm.rows(q, L)
+                Lh = self.zone_limits_hold[gi]
                 rep["zones"] = [dict(row=Z.ROW_NAMES[i], angle_deg=math.degrees(th[i]),
                                      limit_deg=math.degrees(L[i]), g=float(g[i]),
                                      slack_rad=float(max(g[i], 0.0)),
-                                     excess_deg=float(max(math.degrees(th[i] - L[i]), 0.0)))
+                                     excess_deg=float(max(math.degrees(th[i] - L[i]), 0.0)),
+                                     # against the hold's limit (differs from limit_deg only on
+                                     # a free hand's upper-arm row)
+                                     limit_hold_deg=math.degrees(Lh[i]),
+                                     excess_hold_deg=float(max(math.degrees(th[i] - Lh[i]), 0.0)))
                                 for i in range(Z.NROW)]
                 rep["zone_slack_sum_rad"] = float(np.maximum(g, 0).sum())
                 pts = self.gaze_points[gi]

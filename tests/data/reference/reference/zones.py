@@ -20,6 +20,8 @@ Written from the statement only:
   * limits from the phase's hold (run of consecutive phases of the same work: same targets, hand
     forces and gaze; across the cycle's end when the task has no rest); a posture shared by
     several phases takes the smallest limit per row;
+  * a free hand's upper arm (statement of 2026-12-07, session 15): where the phase gives that
+    hand no target, the arm row's limit is min(the hold's limit, 10 deg) (limits_for_phase);
   * gaze: eye point e = head cylinder's middle + 0.8 r along the head link's x; line of sight
     s = R_H (cos 15deg, 0, -sin 15deg); row s.d_hat - cos 15deg >= 0.
 Jacobians: central finite differences of the kinematics (FD_STEP), checked in verify.py.
@@ -337,12 +339,30 @@ def phase_holds(task):
     return holds
 
 
-def group_limits(task):
-    """Per distinct posture: the row-wise smallest limit over the phases that share it."""
+FREE_ARM_LIMIT = 10.0 * DEG
+
+
+def limits_for_phase(phase, hold_s, free_arm=True):
+    """The 25 limits [rad] of one phase: limits_for_hold(hold_s), and (statement of 2026-12-07,
+    session 15) the upper-arm row of a free hand -- a hand the phase gives no target (the task
+    reader's phase.targets has no "r" / "l" key) -- limited to min(L, 10 deg). free_arm=False
+    gives the hold's limits alone (the "row above", against which the plan reports excesses)."""
+    L = limits_for_hold(hold_s).copy()
+    if free_arm:
+        for row, hand in zip(ARM_ROWS, ("r", "l")):
+            if hand not in phase.targets:
+                L[row] = min(L[row], FREE_ARM_LIMIT)
+    return L
+
+
+def group_limits(task, free_arm=True):
+    """Per distinct posture: the row-wise smallest limit over the phases that share it (each
+    phase's limits from limits_for_phase: its hold's, a free hand's upper arm within 10 deg)."""
     holds = phase_holds(task)
     out = []
     for gi in range(task.P):
-        Ls = [limits_for_hold(holds[i]) for i, p in enumerate(task.phases) if p.group == gi]
+        Ls = [limits_for_phase(p, holds[i], free_arm)
+              for i, p in enumerate(task.phases) if p.group == gi]
         out.append(np.min(np.vstack(Ls), axis=0))
     return out, holds
 
