@@ -256,6 +256,9 @@ pub enum Change {
         /// The box the work rests on (a bin, a cart), moved with it where the work would
         /// otherwise leave it, then the boxes standing on it; empty: none.
         surfaces: Vec<String>,
+        /// The move stops short of the normal working area so that a moved box keeps
+        /// [`FEET_ROOM_M`] from the fixed feet.
+        short_of_feet: bool,
     },
     /// What a phase looks at (its `gaze_m`, and every phase looking at the same point) moved up
     /// or down to where the normal line of sight meets it.
@@ -678,8 +681,9 @@ fn toward_normal_area(task: &Task, plan: &Plan, p: usize) -> Option<Vector3<f64>
 /// [`NEAR_ELBOW_M`] of that area's centre, by at most [`MAX_CLOSER_M`], plans the changed task
 /// with `opts` (without baselines) and compares. `None` when every phase's work lies within
 /// [`NEAR_ELBOW_M`] of it. The bin or cart the work rests on moves with it only where the work
-/// would otherwise leave it ([`work_moved`]); other obstacles stay (a change that then collides
-/// is not advised).
+/// would otherwise leave it ([`work_moved`]), and a moved box that reaches below the knee stops
+/// [`FEET_ROOM_M`] short of fixed feet (the move shortened; no what-if when less than
+/// [`NEAR_ELBOW_M`] is left); other obstacles stay (a change that then collides is not advised).
 pub fn bring_work_closer(
     task: &Task,
     plan: &Plan,
@@ -697,18 +701,129 @@ pub fn bring_work_closer(
     if beyond_m < NEAR_ELBOW_M {
         return Ok(None);
     }
-    let step = d * ((beyond_m - NEAR_ELBOW_M).min(MAX_CLOSER_M) / beyond_m);
-    let Some((changed, surfaces)) = work_moved(task, p, step, Surface::MovesIfLeft) else {
+    let full = d * ((beyond_m - NEAR_ELBOW_M).min(MAX_CLOSER_M) / beyond_m);
+    let moved = |s: f64| work_moved(task, p, s * full, Surface::MovesIfLeft);
+    let Some((mut changed, mut surfaces)) = moved(1.0) else {
         return Ok(None);
     };
+    // a box on the floor moved with the work stops short of fixed feet (the cart brought under
+    // the toes left no posture to plan: every phase collided at the foot)
+    let mut fraction = 1.0;
+    let knee_m = knee_height_m(task, plan);
+    if !clear_of_fixed_feet(task, &changed, &surfaces, knee_m) {
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..24 {
+            let mid = 0.5 * (lo + hi);
+            match moved(mid) {
+                Some((c, n)) if clear_of_fixed_feet(task, &c, &n, knee_m) => lo = mid,
+                _ => hi = mid,
+            }
+        }
+        if lo * full.norm() < NEAR_ELBOW_M {
+            return Ok(None);
+        }
+        let Some((c, n)) = moved(lo) else {
+            return Ok(None);
+        };
+        (changed, surfaces, fraction) = (c, n, lo);
+    }
+    let step = fraction * full;
     let change = Change::BringWorkCloser {
         phase: task.phases[p].name.clone(),
         dx_m: step.x,
         dy_m: step.y,
         beyond_m,
         surfaces,
+        short_of_feet: fraction < 1.0,
     };
     plan_changed(change, &changed, plan, a, opts, floor).map(Some)
+}
+
+/// How far a box the closer what-if moves stays from the soles of fixed feet, seen from above
+/// \[m\]: ASSUMPTION, room for the toes and a shoe's edge (the plan keeps the body's own clearance).
+pub const FEET_ROOM_M: f64 = 0.05;
+
+/// Whether every box named in `moved` (of `changed`) that reaches below `knee_m` keeps
+/// [`FEET_ROOM_M`] from the soles of `task`'s fixed feet (their support polygon) seen from above
+/// (a box higher up, a bin on a bench, passes over the feet and the shins); true for feet the
+/// planner places and for a body without a stance.
+fn clear_of_fixed_feet(task: &Task, changed: &Task, moved: &[String], knee_m: f64) -> bool {
+    let Some(st) = task.stance.as_ref().filter(|st| st.placement.is_none()) else {
+        return true;
+    };
+    changed
+        .workstation
+        .obstacles
+        .iter()
+        .filter(|o| moved.contains(&o.spec.name))
+        .filter_map(footprint_m)
+        .all(|(f, bottom_m)| {
+            bottom_m >= knee_m || separation_m(&f, &st.support_polygon_m) >= FEET_ROOM_M
+        })
+}
+
+/// The outline of an upright box seen from above (its four corners, world x-y) and its bottom's
+/// height \[m\]; `None` for another shape or a tilted box.
+fn footprint_m(o: &crate::workstation::Obstacle) -> Option<(Vec<nalgebra::Vector2<f64>>, f64)> {
+    let crate::workstation::ShapeSpec::Box { size_m } = o.spec.shape else {
+        return None;
+    };
+    let [roll, pitch, _] = o.spec.rpy_rad;
+    if roll.abs() > 1e-9 || pitch.abs() > 1e-9 {
+        return None;
+    }
+    let w = o.world_from_obstacle();
+    let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+        .iter()
+        .map(|&(sx, sy)| {
+            let c = w * nalgebra::Point3::new(0.5 * sx * size_m[0], 0.5 * sy * size_m[1], 0.0);
+            nalgebra::Vector2::new(c.x, c.y)
+        })
+        .collect();
+    Some((corners, o.spec.position_m[2] - 0.5 * size_m[2]))
+}
+
+/// The height of the knee (the origin of the link `r_shank`) in the plan's rest posture \[m\];
+/// infinite for a body without that link (every moved box then counts).
+fn knee_height_m(task: &Task, plan: &Plan) -> f64 {
+    let m = &task.model;
+    let q = &plan.summary.rest_posture_rad;
+    match m.links.iter().position(|l| l.name == "r_shank") {
+        Some(knee) if q.len() == m.nq() => {
+            let mut data = crate::body::StaticsData::new(m, 0);
+            crate::body::forward_kinematics(m, &mut data, q);
+            data.link_point(m, knee, &Vector3::zeros()).z
+        }
+        _ => f64::INFINITY,
+    }
+}
+
+/// A lower bound on the distance between two convex polygons \[m\]: their largest separation
+/// along the normals of their edges (separating axes); ≤ 0 when they overlap.
+fn separation_m(a: &[nalgebra::Vector2<f64>], b: &[nalgebra::Vector2<f64>]) -> f64 {
+    let normals = |p: &[nalgebra::Vector2<f64>]| -> Vec<nalgebra::Vector2<f64>> {
+        (0..p.len())
+            .filter_map(|i| {
+                let e = p[(i + 1) % p.len()] - p[i];
+                nalgebra::Vector2::new(e.y, -e.x).try_normalize(1e-12)
+            })
+            .collect()
+    };
+    let span = |p: &[nalgebra::Vector2<f64>], n: &nalgebra::Vector2<f64>| {
+        p.iter()
+            .map(|v| v.dot(n))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            })
+    };
+    normals(a)
+        .iter()
+        .chain(normals(b).iter())
+        .map(|n| {
+            let ((a0, a1), (b0, b1)) = (span(a, n), span(b, n));
+            (b0 - a1).max(a0 - b1)
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The height of the right elbow (the origin of the link `r_forearm`) in the plan's rest posture

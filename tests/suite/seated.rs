@@ -337,6 +337,7 @@ fn the_work_farthest_from_the_normal_area_is_brought_closer() {
         dy_m,
         beyond_m,
         surfaces,
+        short_of_feet,
     } = &w.change
     else {
         panic!("{:?}", w.change)
@@ -362,4 +363,6 @@ fn the_work_farthest_from_the_normal_area_is_brought_closer() {
     // the part would leave the bin (0.25 m across): the bin comes with it, the table stays
     assert!(dy_m.abs() > 0.125);
     assert_eq!(surfaces, &["bin"]);
+    // the bin on the table passes over the feet: the move is not shortened for them
+    assert!(!short_of_feet);
 }

@@ -773,6 +773,98 @@ fn planned_by_hand_as(
     p
 }
 
+/// The shelf's cart, brought closer with the work on it, stops short of the fixed feet: the full
+/// move (281 mm toward the normal working area) put it over the right toes and every phase,
+/// rest included, collided there. The moved cart's outline keeps at least `FEET_ROOM_M` from
+/// each sole's outline (distances computed here from the soles' corners, point to segment), the
+/// move is the one the work needs shortened along its own direction, and the changed plan is
+/// assessed (no collision).
+#[test]
+fn a_cart_brought_closer_stops_short_of_the_feet() {
+    use posture_opt::study::what_if::{FEET_ROOM_M, NEAR_ELBOW_M, bring_work_closer};
+    let (t, p) = common::shipped_plan("shelf");
+    let a = posture_opt::assess::assess(t, p, 0.7);
+    let w = bring_work_closer(t, p, &a, common::held(false), 0.7)
+        .unwrap()
+        .expect("the cart's work lies beyond the normal area");
+    let Change::BringWorkCloser {
+        dx_m,
+        dy_m,
+        surfaces,
+        short_of_feet,
+        beyond_m,
+        ..
+    } = &w.change
+    else {
+        panic!("{:?}", w.change)
+    };
+    assert_eq!(surfaces, &["cart"]);
+    assert!(short_of_feet);
+    let step = (dx_m * dx_m + dy_m * dy_m).sqrt();
+    assert!(
+        step >= NEAR_ELBOW_M && step < beyond_m - NEAR_ELBOW_M,
+        "{step}"
+    );
+    // the cart's corners after the move, seen from above
+    let cart = t
+        .workstation
+        .obstacles
+        .iter()
+        .find(|o| o.spec.name == "cart")
+        .unwrap();
+    let [cx, cy, _] = cart.spec.position_m;
+    let posture_opt::workstation::ShapeSpec::Box { size_m } = cart.spec.shape else {
+        panic!("the cart is a box")
+    };
+    let corners = |x: f64, y: f64, sx: f64, sy: f64, yaw: f64| -> Vec<[f64; 2]> {
+        [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+            .iter()
+            .map(|&(a, b)| {
+                let (u, v) = (0.5 * a * sx, 0.5 * b * sy);
+                [
+                    x + u * yaw.cos() - v * yaw.sin(),
+                    y + u * yaw.sin() + v * yaw.cos(),
+                ]
+            })
+            .collect()
+    };
+    let moved = corners(cx + dx_m, cy + dy_m, size_m[0], size_m[1], 0.0);
+    // the fixed feet's outline: the stance's support polygon (the hull of both soles)
+    let st = t.stance.as_ref().unwrap();
+    let seg = |p: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+        let s = (((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / (ex * ex + ey * ey)).clamp(0.0, 1.0);
+        ((p[0] - a[0] - s * ex).powi(2) + (p[1] - a[1] - s * ey).powi(2)).sqrt()
+    };
+    let dist = |pa: &[[f64; 2]], pb: &[[f64; 2]]| {
+        let mut d = f64::INFINITY;
+        for (x, y) in [(pa, pb), (pb, pa)] {
+            for &v in x {
+                for i in 0..y.len() {
+                    d = d.min(seg(v, y[i], y[(i + 1) % y.len()]));
+                }
+            }
+        }
+        d
+    };
+    let hull: Vec<[f64; 2]> = st.support_polygon_m.iter().map(|v| [v.x, v.y]).collect();
+    // (the cart lies to the right of the feet: neither outline holds the other's corners)
+    let d = dist(&moved, &hull);
+    assert!(
+        d >= FEET_ROOM_M - 1e-9,
+        "the moved cart is {d} m from the feet (room {FEET_ROOM_M} m)"
+    );
+    // and the move is not cut more than the feet ask: 1 mm more would bring it nearer than that
+    let s = 1.0 + 0.001 / step;
+    let farther = corners(cx + s * dx_m, cy + s * dy_m, size_m[0], size_m[1], 0.0);
+    assert!(
+        dist(&farther, &hull) < FEET_ROOM_M + 0.002,
+        "{}",
+        dist(&farther, &hull)
+    );
+    assert!(w.problems.is_empty(), "{:?}", w.problems);
+}
+
 /// Work moved up or down takes the shelf board it rests on with it, and the other work on that
 /// board (a trial's "closer" what-if floated a box above its shelf): a box placed on a board at
 /// 1.45 m, 0.34 m above this worker's elbow, is lowered 0.10 m with the board and the tote on it;

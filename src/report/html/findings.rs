@@ -772,12 +772,22 @@ fn change_words(c: &crate::study::what_if::Change) -> String {
             dy_m,
             beyond_m,
             surfaces,
+            short_of_feet,
         } => format!(
-            "placing the work of {}{} {} closer, toward the normal working area in front of the worker (the hand's sweep with the elbow at the side, centred {} from the work)",
+            "placing the work of {}{} {} closer, toward the normal working area in front of the worker (the hand's sweep with the elbow at the side, centred {} from the work{})",
             q(phase),
             surface_words(surfaces),
             mm(dx_m.hypot(*dy_m)),
-            mm(*beyond_m)
+            mm(*beyond_m),
+            if *short_of_feet {
+                format!(
+                    "; as far as leaves {} between {} and the feet",
+                    mm(crate::study::what_if::FEET_ROOM_M),
+                    surfaces.first().map_or("the work".to_string(), |n| q(n))
+                )
+            } else {
+                String::new()
+            }
         ),
         Change::MoveGaze { phase, dz_m } => format!(
             "placing what {} looks at {} {}, where the normal line of sight ({}° below the horizontal, MIL-STD-1472) meets it",
