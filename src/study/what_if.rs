@@ -396,7 +396,9 @@ pub fn phase_to_move(task: &Task, plan: &Plan, a: &Assessment) -> Option<usize> 
     let back = |p: usize| a.phases.get(p).and_then(|x| x.low_back.as_ref());
     let compression = |p: usize| back(p).map_or(0.0, |b| b.compression_n);
     let n = task.phases.len();
+    // (each search takes the first of equal phases: `rev` before `max_by`, which keeps the last)
     if let Some(p) = (0..n)
+        .rev()
         .filter(|&p| {
             back(p).is_some_and(|b| b.compression_verdict != CompressionVerdict::WithinActionLimit)
         })
@@ -408,6 +410,7 @@ pub fn phase_to_move(task: &Task, plan: &Plan, a: &Assessment) -> Option<usize> 
     let excess = |p: usize| phase_zone_excess_deg(plan, p);
     if plan.summary.zones
         && let Some(p) = (0..n)
+            .rev()
             .filter(|&p| excess(p) > 0.0)
             .max_by(|&x, &y| excess(x).total_cmp(&excess(y)))
     {
@@ -422,6 +425,7 @@ pub fn phase_to_move(task: &Task, plan: &Plan, a: &Assessment) -> Option<usize> 
             .fold(0.0, f64::max)
     };
     (0..n)
+        .rev()
         .filter(|&p| load(p) > 0.0)
         .max_by(|&x, &y| load(x).total_cmp(&load(y)))
 }
@@ -691,7 +695,9 @@ pub fn bring_work_closer(
     opts: PlanOptions,
     floor: f64,
 ) -> Result<Option<WhatIf>, PlanError> {
+    // (the first of equal phases: `max_by` keeps the last)
     let farthest = (0..task.phases.len())
+        .rev()
         .filter_map(|p| toward_normal_area(task, plan, p).map(|d| (p, d)))
         .max_by(|x, y| x.1.norm().total_cmp(&y.1.norm()));
     let Some((p, d)) = farthest else {
@@ -876,6 +882,7 @@ pub fn move_gaze(
         return Ok(None);
     };
     let worst = (0..task.phases.len().min(plan.summary.phases.len()))
+        .rev()
         .filter(|&p| matches!(task.phases[p].gaze, Gaze::Point(_)))
         .map(|p| (p, head_beyond_deg(a, p)))
         .filter(|(_, d)| *d > 0.0)
