@@ -27,7 +27,7 @@ use serde::Serialize;
 pub const UNILATERAL_SHARE: f64 = 0.1;
 
 /// One arm's angles (degrees).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct ArmAngles {
     pub upper_arm_flexion_deg: f64,
     pub upper_arm_abduction_deg: f64,
@@ -47,7 +47,7 @@ pub struct ArmAngles {
 }
 
 /// The whole body's angles (degrees).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct BodyAngles {
     pub trunk_flexion_deg: f64,
     /// Toward the left positive.

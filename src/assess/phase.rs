@@ -138,6 +138,16 @@ pub fn describe(a: &BodyAngles) -> String {
             } else {
                 format!("{:.0}° behind the trunk", -arm.upper_arm_flexion_deg)
             };
+            // an arm hanging in a stoop is far forward of the trunk and still hangs: said so
+            // first (within the planner's free-arm limit of the vertical)
+            if arm.upper_arm_elevation_deg.round() <= crate::plan::zones::FREE_ARM_DEG {
+                let against = sagittal.trim_start_matches("raised ");
+                parts.push(format!(
+                    "{name} upper arm hanging, {:.0}° from the vertical ({against})",
+                    arm.upper_arm_elevation_deg
+                ));
+                continue;
+            }
             // and its elevation from the vertical, the angle ISO 11226 and EN 1005-4 judge (a
             // trial read "raised 56° forward of the trunk" here and "raised 61° from the
             // vertical" in the verdict for the same arm)
@@ -306,4 +316,50 @@ pub fn assess_phases(task: &Task, plan: &Plan) -> Vec<PhaseAssessment> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assess::angles::ArmAngles;
+
+    fn arm(flexion_deg: f64, abduction_deg: f64, elevation_deg: f64) -> ArmAngles {
+        ArmAngles {
+            upper_arm_flexion_deg: flexion_deg,
+            upper_arm_abduction_deg: abduction_deg,
+            upper_arm_elevation_deg: elevation_deg,
+            ..ArmAngles::default()
+        }
+    }
+
+    /// A free arm hanging beside a trunk stooped 38° is 28° forward of the trunk and 10° from the
+    /// vertical: it reads as hanging; a working arm raised 53° from the vertical reads as raised.
+    #[test]
+    fn an_arm_hanging_in_a_stoop_reads_as_hanging() {
+        let a = BodyAngles {
+            trunk_flexion_deg: 38.0,
+            right: arm(62.0, 57.0, 53.0),
+            left: arm(28.0, 0.0, 10.0),
+            ..BodyAngles::default()
+        };
+        let w = describe(&a);
+        assert!(
+            w.contains("left upper arm hanging, 10° from the vertical (28° forward of the trunk)"),
+            "{w}"
+        );
+        assert!(
+            w.contains("right upper arm raised 62° forward of the trunk, 57° out to the side (53° from the vertical)"),
+            "{w}"
+        );
+        let back = BodyAngles {
+            left: arm(-21.0, 0.0, 8.0),
+            ..a
+        };
+        assert!(
+            describe(&back)
+                .contains("left upper arm hanging, 8° from the vertical (21° behind the trunk)"),
+            "{}",
+            describe(&back)
+        );
+    }
 }
