@@ -125,6 +125,16 @@ pub const PASS_TOLERANCE: f64 = 1e-4;
 /// Cross-seeding rounds after the passes of a global search have settled: every group is
 /// searched again from its posture and from every other group's, then passes resume.
 pub const CROSS_ROUNDS: usize = 1;
+/// A search after the first passes have settled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Round {
+    /// Every group searched again from its posture and from every other group's.
+    Cross,
+    /// Every group with a loaded hand searched again from its posture and from it with the
+    /// loaded forearms turned ([`super::search::PhaseSolver::forearms_turned`]).
+    Forearms,
+}
+
 /// Coordination passes of the fatigue-unaware baseline (it starts from the main plan).
 pub const BASELINE_PASSES: usize = 2;
 /// SQP iterations a re-plan allows each phase (it starts from the previous plan's posture): with
@@ -520,17 +530,20 @@ impl<'t> Planner<'t> {
         let mut loads = self.phase_loads(gp);
         let mut passes = Vec::new();
         let mut last = f64::INFINITY;
-        // passes since the last search (global or cross-seeding), and cross rounds left
-        let (mut since, mut cross_left, mut cross) = (
-            0,
-            if multistart && self.groups.len() > 1 {
-                self.cross_rounds
-            } else {
-                0
-            },
-            false,
-        );
-        let mut before_cross: Option<(GroupPostures, usize)> = None;
+        // the searches after the first passes settle, last first: the cross-seeding rounds, then
+        // the forearm round (only with cross-seeding on and a global search)
+        let mut pending: Vec<Round> = Vec::new();
+        if multistart && self.cross_rounds > 0 {
+            pending.push(Round::Forearms);
+            if self.groups.len() > 1 {
+                pending.extend(std::iter::repeat_n(Round::Cross, self.cross_rounds));
+            }
+        }
+        // the round under way (its search is this pass), passes since the last search, and the
+        // plan before the round
+        let mut round: Option<Round> = None;
+        let mut since = 0;
+        let mut before: Option<(GroupPostures, usize)> = None;
         loop {
             let global = multistart && passes.is_empty();
             for g in 0..self.groups.len() {
@@ -549,20 +562,28 @@ impl<'t> Planner<'t> {
                 };
                 let start = gp.q[g].clone();
                 let mut q = start.clone();
-                if cross {
-                    self.solver.extra_seeds = (0..self.groups.len())
+                self.solver.extra_seeds = match round {
+                    Some(Round::Cross) => (0..self.groups.len())
                         .filter(|&h| h != g)
                         .map(|h| gp.q[h].clone())
-                        .collect();
-                } else if global && let Some(h) = &self.hint {
-                    self.solver.extra_seeds = vec![h[members[0]].clone()];
-                }
+                        .collect(),
+                    Some(Round::Forearms) => self.solver.forearms_turned(&start, &rep.hand_force_n),
+                    None if global => self
+                        .hint
+                        .as_ref()
+                        .map_or(Vec::new(), |h| vec![h[members[0]].clone()]),
+                    None => Vec::new(),
+                };
+                // a forearm round searches the groups with a turn; the others take a local pass
+                let search = global
+                    || round == Some(Round::Cross)
+                    || !self.solver.extra_seeds.is_empty() && round.is_some();
                 self.solver.pool.clear();
                 self.solver.stepping = self.stepping_for(g, gp, fatigue_only);
                 self.solver.held = self.held[g].clone();
                 let (out, stats) = self
                     .solver
-                    .solve(&spec, &mut cost, Some(&start), global || cross, &mut q)
+                    .solve(&spec, &mut cost, Some(&start), search, &mut q)
                     .map_err(|source| PlanError::Qp {
                         phase: rep.name.clone(),
                         source,
@@ -584,30 +605,44 @@ impl<'t> Planner<'t> {
             since += 1;
             let settled = (last - j).abs() <= PASS_TOLERANCE * j.abs().max(1.0);
             last = j;
-            if cross && settled {
-                // the cross-seeding round found nothing better
-                break;
+            round = None;
+            if !(settled || since >= max_passes) {
+                continue;
             }
-            cross = false;
-            if settled || since >= max_passes {
-                if cross_left == 0 {
-                    break;
+            // A round that ends higher than the plan before it is undone (each group's search
+            // lowers its own objective with the others held, which the passes after it need not
+            // keep where a phase ends unconverged); so is, with the discomfort term on, one that
+            // parks a joint at a limit the plan before it kept well clear of (the search only
+            // traded the term's end penalty for fatigue).
+            if let Some((gp0, n0)) = before.take()
+                && (j > passes[n0 - 1] || !fatigue_only && self.parks_at_a_limit(gp, &gp0))
+            {
+                *gp = gp0;
+                passes.truncate(n0);
+                last = passes.last().copied().unwrap_or(f64::INFINITY);
+                loads = self.phase_loads(gp);
+            }
+            // the next round with something to search, if any
+            let next = loop {
+                match pending.pop() {
+                    Some(Round::Forearms)
+                        if (0..self.groups.len()).all(|g| {
+                            let rep = &t.phases[self.groups[g][0]];
+                            self.solver
+                                .forearms_turned(&gp.q[g], &rep.hand_force_n)
+                                .is_empty()
+                        }) => {}
+                    other => break other,
                 }
-                cross_left -= 1;
-                cross = true;
-                since = 0;
-                before_cross = Some((gp.clone(), passes.len()));
+            };
+            match next {
+                None => break,
+                Some(r) => {
+                    round = Some(r);
+                    since = 0;
+                    before = Some((gp.clone(), passes.len()));
+                }
             }
-        }
-        // With the discomfort term on, a round that parks a joint at a limit the plan before it
-        // kept well clear of is undone (the search only traded the term's end penalty for
-        // fatigue).
-        if let Some((gp0, n0)) = before_cross
-            && !fatigue_only
-            && self.parks_at_a_limit(gp, &gp0)
-        {
-            *gp = gp0;
-            passes.truncate(n0);
         }
         Ok(passes)
     }

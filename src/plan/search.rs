@@ -25,6 +25,12 @@ use nalgebra::Vector3;
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_2;
 
+/// How far [`PhaseSolver::forearms_turned`] turns a loaded hand's forearm from neutral \[rad\]
+/// (70°, within the worker's ±80° of pronation and supination). ASSUMPTION: far enough that the
+/// hand's load falls mostly on the wrist's flexors or extensors (cos 70° = 0.34 of it left on
+/// the deviators), short of the range's end.
+pub const FOREARM_TURN_RAD: f64 = 70.0 * std::f64::consts::PI / 180.0;
+
 /// Multi-start settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SearchSettings {
@@ -174,6 +180,32 @@ impl<'t> PhaseSolver<'t> {
                 .iter()
                 .map(|(_, w)| w.qp.ipm_iterations)
                 .sum::<u64>()
+    }
+
+    /// `q` with the forearm of every hand that holds a load turned palm down and, as a second
+    /// posture, palm up ([`FOREARM_TURN_RAD`] from neutral; none for a body without
+    /// `r_forearm_pronation` / `l_forearm_pronation` joints). Which wrist muscles carry the hand's load is a choice between local optima:
+    /// with the forearm neutral the load's moment falls on the wrist's deviators, turned on its
+    /// flexors or extensors, and a local solve from one does not reach the other (turning the
+    /// forearm a little loads a second muscle group at once while it relieves the first only
+    /// to second order). Cross-seeding starts from these turns of the posture it improves.
+    pub fn forearms_turned(&self, q: &[f64], hand_force_n: &[Vector3<f64>; 2]) -> Vec<Vec<f64>> {
+        let m = &self.task.model;
+        [FOREARM_TURN_RAD, -FOREARM_TURN_RAD]
+            .iter()
+            .filter_map(|&turn| {
+                let mut turned = q.to_vec();
+                for (h, side) in ["r_", "l_"].iter().enumerate() {
+                    if hand_force_n[h] != Vector3::zeros()
+                        && let Ok(k) = m.q_index(&format!("{side}forearm_pronation"))
+                    {
+                        let j = m.q_joint(k);
+                        turned[k] = turn.clamp(j.lower_rad, j.upper_rad);
+                    }
+                }
+                (turned != q).then_some(turned)
+            })
+            .collect()
     }
 
     /// Starting postures for a phase with these targets (before IK).

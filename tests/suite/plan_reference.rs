@@ -22,8 +22,11 @@
 //! With the zones and the gaze (`results_zones/`, the statement's fatigue-only objective
 //! `ln(ΣU + 1e-3) + 10 Σv`): the same objective consistency, the reference's 25 zone angles equal
 //! posture-opt's on its best postures, and the zoned fatigue-only plan is no worse than the
-//! median of the reference's sustainable whole-plan local optima (shelf a known miss, held
-//! within its measured gap to the reference's best).
+//! median of the reference's sustainable whole-plan local optima and its total within 1 % of the
+//! reference's best (a known miss held within its measured gap instead). The tasks are the
+//! shipped ones with results and tasks written for the reference alone
+//! (`tests/data/reference/inputs/KEY.yaml` without a `tasks/KEY.yaml`: nobody tuned the planner
+//! on them).
 //!
 //! Every number asserted against comes from the reference's own files (the known miss's gap
 //! excepted: a measured bound); nothing produced by posture-opt is copied into an assertion.
@@ -113,8 +116,20 @@ impl Reference {
         v
     }
 
+    /// The task file: the shipped `tasks/KEY.yaml`, or, for a task written for the reference
+    /// alone (one nobody tuned the planner on), `tests/data/reference/inputs/KEY.yaml`.
     fn task(&self) -> String {
-        format!("tasks/{}.yaml", self.key)
+        let shipped = format!("tasks/{}.yaml", self.key);
+        if root().join(&shipped).exists() {
+            shipped
+        } else {
+            format!("tests/data/reference/inputs/{}.yaml", self.key)
+        }
+    }
+
+    /// Whether the task is one of the shipped tasks (not written for the reference alone).
+    fn shipped(&self) -> bool {
+        self.task().starts_with("tasks/")
     }
 
     /// The best plan replayed as a recording (CSV, radians, zero-order hold): every step of every
@@ -280,7 +295,7 @@ fn reference_inputs_are_the_repository_files() {
         inputs.join("fatigue_sets.yaml"),
         root().join("data/fatigue_sets.yaml"),
     );
-    for r in all_references() {
+    for r in all_references().iter().filter(|r| r.shipped()) {
         same_yaml(
             inputs.join(format!("{}.yaml", r.key)),
             root().join(r.task()),
@@ -578,13 +593,16 @@ const ZONED_KNOWN_MISSES: &[(&str, f64)] = &[];
 
 /// With the zones and the gaze (the statement's fatigue-only objective `ln(ΣU + 1e-3) + 10 Σv`),
 /// `plan --no-adapt --fatigue-only` is no worse than the median of the reference's whole-plan
-/// local optima that exhaust no muscle group, except the known misses, held within their measured
-/// gap to the reference's best.
+/// local optima that exhaust no muscle group and its total is within 1 % of the reference's best,
+/// except the known misses, held within their measured gap to the reference's best.
 #[test]
 fn zoned_fatigue_only_plan_against_the_reference() {
     let refs = references_in("results_zones");
     assert!(!refs.is_empty(), "no results_zones/");
     let plans = plans_side_by_side(refs.iter(), &["--fatigue-only"]);
+    // "within 1 % of the reference's best" on the objective `ln(ΣU + 1e-3) + 10 Σv`: with no
+    // zone excess on either side, a difference of ln 1.01 is a total 1 % higher
+    let within_one_per_cent = 1.01f64.ln();
     let mut bad = Vec::new();
     for r in &refs {
         let plan = &plans[&r.key];
@@ -628,6 +646,11 @@ fn zoned_fatigue_only_plan_against_the_reference() {
             None if ours > med + MEDIAN_REL_SLACK * med.abs() => bad.push(format!(
                 "{}: {ours} above the reference's median local optimum {med}",
                 r.key
+            )),
+            None if ours - best > within_one_per_cent => bad.push(format!(
+                "{}: {ours} is {:.4} above the reference's best {best}: its total more than 1 % above",
+                r.key,
+                ours - best
             )),
             None => {}
         }
