@@ -630,8 +630,8 @@ fn zoned_fatigue_only_plan_against_the_reference() {
             // a reference run that found no sustainable whole-plan optimum (its joint stage
             // had no time, or every optimum exhausts a group) has no best to be within 1 % of
             println!(
-                "{:<16} not compared: no whole-plan local optimum of the reference's exhausts no \
-                 muscle group (its best, {:.6}, exhausts {})",
+                "{:<16} not compared: the reference has no whole-plan local optimum that exhausts \
+                 no muscle group (its best, {:.6}, exhausts {})",
                 r.key,
                 num(&r.json["best_objective"], "best_objective"),
                 r.json["exhausted_half_joints"]
