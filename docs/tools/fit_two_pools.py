@@ -227,18 +227,17 @@ def main():
     single = Routed(0.0, R_MAX, 0.37, 0.085)  # phi = 0: the fast pool is never used
     report("single (shipped: R_rest 0.37 /min, f_lim 0.085)", single, d, "")
 
-    def make_mix(x):
-        return Mixture(logistic(x[0]), min(R_MAX, math.exp(x[1])), min(R_MAX, math.exp(x[2])),
-                       0.03 + 0.2 * logistic(x[3]))
-    mix, _ = fit(make_mix, [[logit(0.2), math.log(4.7), math.log(0.23), logit(0.26)],
+    def params(x):
+        """(share, R_fast, R_slow, f_lim) from unbounded x."""
+        return (logistic(x[0]), min(R_MAX, math.exp(x[1])), min(R_MAX, math.exp(x[2])),
+                0.03 + 0.2 * logistic(x[3]))
+
+    mix, _ = fit(lambda x: Mixture(*params(x)), [[logit(0.2), math.log(4.7), math.log(0.23), logit(0.26)],
                             [logit(0.4), math.log(5.0), math.log(0.05), logit(0.275)]], d)
     report("mixture of two Ma units", mix, d,
            "w %.3f, R_fast %.3f, R_slow %.3f /min, f_lim %.4f" % (mix.w, mix.r_fast, mix.r_slow, mix.f_lim))
 
-    def make_routed(x):
-        return Routed(logistic(x[0]), min(R_MAX, math.exp(x[1])), min(R_MAX, math.exp(x[2])),
-                      0.03 + 0.2 * logistic(x[3]))
-    routed, _ = fit(make_routed, [[logit(0.15), math.log(19.0), math.log(0.32), logit(0.275)],
+    routed, _ = fit(lambda x: Routed(*params(x)), [[logit(0.15), math.log(19.0), math.log(0.32), logit(0.275)],
                                   [logit(0.3), math.log(6.0), math.log(0.25), logit(0.275)]], d)
     report("routed two deficits", routed, d,
            "phi_max %.3f, R_fast %.3f, R_slow %.3f /min, f_lim %.4f"

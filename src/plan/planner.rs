@@ -87,7 +87,8 @@ pub struct PlanOptions {
     /// Compute the three baselines.
     pub baselines: bool,
     /// After the first plan's passes settle, search every group again from the other groups'
-    /// postures ([`CROSS_ROUNDS`] rounds); false stops at the settled passes.
+    /// postures ([`CROSS_ROUNDS`] rounds), then every group whose hand holds a load from its
+    /// posture with that forearm turned (the forearm round); false stops at the settled passes.
     pub cross_seeding: bool,
     /// After the first plan's search, swap groups' postures for other local optima the search
     /// found where that lowers the whole objective ([`Planner`]'s pool swap); false keeps the
@@ -577,7 +578,7 @@ impl<'t> Planner<'t> {
                 // a forearm round searches the groups with a turn; the others take a local pass
                 let search = global
                     || round == Some(Round::Cross)
-                    || !self.solver.extra_seeds.is_empty() && round.is_some();
+                    || (round == Some(Round::Forearms) && !self.solver.extra_seeds.is_empty());
                 self.solver.pool.clear();
                 self.solver.stepping = self.stepping_for(g, gp, fatigue_only);
                 self.solver.held = self.held[g].clone();

@@ -182,13 +182,15 @@ impl<'t> PhaseSolver<'t> {
                 .sum::<u64>()
     }
 
-    /// `q` with the forearm of every hand that holds a load turned palm down and, as a second
-    /// posture, palm up ([`FOREARM_TURN_RAD`] from neutral; none for a body without
-    /// `r_forearm_pronation` / `l_forearm_pronation` joints). Which wrist muscles carry the hand's load is a choice between local optima:
-    /// with the forearm neutral the load's moment falls on the wrist's deviators, turned on its
+    /// `q` with the forearm of every hand that holds a load pronated and, as a second posture,
+    /// supinated ([`FOREARM_TURN_RAD`] from mid-position; none for a body without
+    /// `r_forearm_pronation` / `l_forearm_pronation` joints or a phase without a hand load).
+    /// Which wrist muscles carry the hand's load is a choice between local optima: with the
+    /// forearm in mid-position the load's moment falls on the wrist's deviators, turned on its
     /// flexors or extensors, and a local solve from one does not reach the other (turning the
     /// forearm a little loads a second muscle group at once while it relieves the first only
-    /// to second order). Cross-seeding starts from these turns of the posture it improves.
+    /// to second order). The planner's forearm round starts from these turns of the posture it
+    /// improves.
     pub fn forearms_turned(&self, q: &[f64], hand_force_n: &[Vector3<f64>; 2]) -> Vec<Vec<f64>> {
         let m = &self.task.model;
         [FOREARM_TURN_RAD, -FOREARM_TURN_RAD]
