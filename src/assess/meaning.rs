@@ -310,14 +310,15 @@ pub fn replay_plan(plan: &Plan, params: &[MaParams]) -> Replay {
             .entry((st.posture[i], d.to_bits()))
             .or_insert_with(|| (0..nh).map(|h| params[h].prepare(f[h], d)).collect());
         for h in 0..nh {
-            let c0 = state[h].capacity;
-            state[h].capacity = holds[h].capacity(c0);
+            let before = state[h];
+            let c0 = before.capacity;
+            holds[h].advance(&mut state[h]);
             // capacity moves monotonically within a step held at one load, so the group gives
             // out within it only if it starts or ends at or below the load: only then is the
             // time sought (a group that starts below its load may recover above it by the end)
             if r.exhaustion.is_none()
                 && (c0 <= f[h] || state[h].capacity <= f[h] * (1.0 + 1e-9))
-                && let Some(te) = params[h].time_to_exhaustion_s(c0, f[h])
+                && let Some(te) = params[h].time_to_exhaustion_within_s(&before, f[h], d)
                 && te < d
             {
                 r.exhaustion = Some((st.t_s[i] + te, h));

@@ -57,6 +57,7 @@ pub trait Real:
     fn exp_m1(self) -> Self;
     fn ln(self) -> Self;
     fn ln_1p(self) -> Self;
+    fn sqrt(self) -> Self;
 }
 
 impl Real for f64 {
@@ -83,6 +84,10 @@ impl Real for f64 {
     #[inline]
     fn ln_1p(self) -> Self {
         f64::ln_1p(self)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
     }
 }
 
@@ -118,6 +123,11 @@ impl Real for Dual2 {
     fn ln_1p(self) -> Self {
         let r = 1.0 / (1.0 + self.v);
         self.chain(self.v.ln_1p(), r, -r * r)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        let q = self.v.sqrt();
+        self.chain(q, 0.5 / q, -0.25 / (q * self.v))
     }
 }
 

@@ -228,6 +228,9 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
 /// `c* + (1 − c*) Aⁿ` with `c* = B/(1 − A)`; exhaustion comes in the first cycle whose start lies
 /// at or below the capacity from which the work period reaches the load.
 pub fn predict(p: &MaParams, row: &Row) -> f64 {
+    if matches!(p.recovery, Recovery::Routed { .. }) {
+        return predict_stepped(p, row);
+    }
     let f = row.load_fmvc;
     let mut s = MaState::FRESH;
     match (row.cycle_s, row.what) {
@@ -238,18 +241,8 @@ pub fn predict(p: &MaParams, row: &Row) -> f64 {
                 Measured::Capacity { t_s, .. } => {
                     let period = on + off;
                     let n = (t_s / period).floor();
-                    let mut t = n * period;
                     s.capacity = cy.start_capacity(n);
-                    let d = on.min(t_s - t);
-                    if d > 0.0 {
-                        p.hold(&mut s, f, d);
-                        t += d;
-                    }
-                    let d = off.min(t_s - t);
-                    if d > 0.0 {
-                        p.hold(&mut s, 0.0, d);
-                    }
-                    s.capacity
+                    last_cycle(p, &mut s, f, (on, off), t_s - n * period)
                 }
             }
         }
@@ -259,6 +252,65 @@ pub fn predict(p: &MaParams, row: &Row) -> f64 {
         (None, Measured::Capacity { t_s, .. }) => {
             p.hold(&mut s, f, t_s);
             s.capacity
+        }
+    }
+}
+
+/// The capacity after the first `left_s` of an on-off cycle from `s`.
+fn last_cycle(p: &MaParams, s: &mut MaState, f: f64, (on, off): (f64, f64), left_s: f64) -> f64 {
+    let d = on.min(left_s);
+    if d > 0.0 {
+        p.hold(s, f, d);
+    }
+    let d = off.min(left_s - d.max(0.0));
+    if d > 0.0 {
+        p.hold(s, 0.0, d);
+    }
+    s.capacity
+}
+
+/// [`predict`] for the routed recovery, whose state (capacity and fast deficit) moves by a 2 × 2
+/// map per cycle: the intermittent holds are held cycle by cycle, each step exactly, until the
+/// group gives out, its state stops changing (it never will), or 24 h have passed.
+fn predict_stepped(p: &MaParams, row: &Row) -> f64 {
+    let f = row.load_fmvc;
+    let mut s = MaState::FRESH;
+    let Some((on, off)) = row.cycle_s else {
+        return match row.what {
+            Measured::EnduranceS(_) => p
+                .time_to_exhaustion_within_s(&s, f, MAX_ENDURANCE_S)
+                .unwrap_or(MAX_ENDURANCE_S),
+            Measured::Capacity { t_s, .. } => {
+                p.hold(&mut s, f, t_s);
+                s.capacity
+            }
+        };
+    };
+    let (work, rest) = (p.prepare(f, on), p.prepare(0.0, off));
+    let mut t = 0.0;
+    match row.what {
+        Measured::EnduranceS(_) => loop {
+            if t >= MAX_ENDURANCE_S {
+                return MAX_ENDURANCE_S;
+            }
+            if let Some(te) = p.time_to_exhaustion_within_s(&s, f, on) {
+                return (t + te).min(MAX_ENDURANCE_S);
+            }
+            let before = s;
+            work.advance(&mut s);
+            rest.advance(&mut s);
+            t += on + off;
+            if s.capacity == before.capacity && s.fast_deficit == before.fast_deficit {
+                return MAX_ENDURANCE_S;
+            }
+        },
+        Measured::Capacity { t_s, .. } => {
+            while t + on + off <= t_s {
+                work.advance(&mut s);
+                rest.advance(&mut s);
+                t += on + off;
+            }
+            last_cycle(p, &mut s, f, (on, off), t_s - t)
         }
     }
 }
@@ -400,6 +452,9 @@ pub struct Fit {
     pub rest_per_min: Estimate,
     pub rest_fitted: bool,
     pub limit_fmvc: f64,
+    /// The routed recovery's fast deficit, kept as given (`None`: the perfusion form).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fast: Option<FastDeficit>,
     pub rms_log_error: f64,
     pub iterations: usize,
     pub converged: bool,
@@ -408,14 +463,26 @@ pub struct Fit {
 
 pub const METHOD: &str = "Levenberg-Marquardt on ln k per region (and ln R_rest when the data hold intermittent work); residuals ln(predicted/measured); 95 % CIs from s²(JᵀJ)⁻¹ with Student's t, exponentiated";
 
+/// The fast deficit of the routed recovery ([`Recovery::Routed`]), kept as given while k and the
+/// slow rate are fitted (the rows `fit` reads, continuous and intermittent holds, do not pin
+/// it down: it shows in the first seconds of a rest after a heavy hold).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FastDeficit {
+    pub rest_per_min: f64,
+    pub share_max: f64,
+}
+
 /// Fitting options.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FitOptions {
-    /// R_rest \[1/min\] to start from (and to keep when not fitted).
+    /// R_rest \[1/min\] to start from (and to keep when not fitted); the slow deficit's rate
+    /// under the routed recovery.
     pub rest_per_min: f64,
     pub limit_fmvc: f64,
     /// Fit R_rest: `None` = when the data hold intermittent holds.
     pub fit_rest: Option<bool>,
+    /// `Some`: the routed recovery with this fast deficit; `None`: the perfusion form.
+    pub fast: Option<FastDeficit>,
 }
 
 impl Default for FitOptions {
@@ -424,6 +491,26 @@ impl Default for FitOptions {
             rest_per_min: 0.37,
             limit_fmvc: 0.085,
             fit_rest: None,
+            fast: None,
+        }
+    }
+}
+
+impl FitOptions {
+    /// The recovery with rate `rest` at rest (none when 0).
+    fn recovery(&self, rest: f64) -> Recovery {
+        match self.fast {
+            _ if rest <= 0.0 => Recovery::None,
+            None => Recovery::Perfusion {
+                rest_per_min: rest,
+                limit_fmvc: self.limit_fmvc,
+            },
+            Some(fast) => Recovery::Routed {
+                slow_rest_per_min: rest,
+                fast_rest_per_min: fast.rest_per_min.max(rest),
+                limit_fmvc: self.limit_fmvc,
+                fast_share_max: fast.share_max,
+            },
         }
     }
 }
@@ -450,17 +537,9 @@ impl Problem<'_> {
         } else {
             self.opts.rest_per_min
         };
-        let recovery = if rest > 0.0 {
-            Recovery::Perfusion {
-                rest_per_min: rest,
-                limit_fmvc: self.opts.limit_fmvc,
-            }
-        } else {
-            Recovery::None
-        };
         MaParams {
             k_per_min: k,
-            recovery,
+            recovery: self.opts.recovery(rest),
         }
     }
 
@@ -695,14 +774,9 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         .enumerate()
         .map(|(g, name)| {
             let idx: Vec<usize> = (0..n).filter(|&i| pr.region_of[i] == g).collect();
-            let sustainable_load = MaParams::with_recovery(
-                theta[g].exp(),
-                Recovery::Perfusion {
-                    rest_per_min,
-                    limit_fmvc: opts.limit_fmvc,
-                },
-            )
-            .map_or(0.0, |p| p.sustainable_load());
+            let sustainable_load =
+                MaParams::with_recovery(theta[g].exp(), opts.recovery(rest_per_min))
+                    .map_or(0.0, |p| p.sustainable_load());
             RegionFit {
                 region: name.clone(),
                 rows: idx.len(),
@@ -733,6 +807,7 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         },
         rest_fitted: fit_rest,
         limit_fmvc: opts.limit_fmvc,
+        fast: opts.fast,
         rms_log_error: (cost / n as f64).sqrt(),
         iterations,
         converged,
@@ -757,15 +832,11 @@ impl Fit {
             female.remove(&r.region);
             male.remove(&r.region);
         }
-        let (rest_low, rest_high, limit_low, limit_high) = match base.recovery {
-            RecoverySpec::Perfusion {
-                rest_low,
-                rest_high,
-                limit_low,
-                limit_high,
-                ..
-            } => (rest_low, rest_high, limit_low, limit_high),
-            RecoverySpec::None => (0.0, 0.0, self.limit_fmvc, self.limit_fmvc),
+        let (rest_low, rest_high, limit_low, limit_high) = match base.recovery.ranges() {
+            Some((_, rest_low, rest_high, _, limit_low, limit_high)) => {
+                (rest_low, rest_high, limit_low, limit_high)
+            }
+            None => (0.0, 0.0, self.limit_fmvc, self.limit_fmvc),
         };
         let (rl, rh) = if self.rest_fitted {
             (
@@ -778,20 +849,35 @@ impl Fit {
                 rest_high.max(self.rest_per_min.value),
             )
         };
+        let (rest_per_min, limit_fmvc) = (self.rest_per_min.value, self.limit_fmvc);
+        let (limit_low, limit_high) = (limit_low.min(limit_fmvc), limit_high.max(limit_fmvc));
         ParameterSet {
             name: "fitted".into(),
             description: format!(
                 "fitted by posture-opt fit to {} ({} measurements); regions not in the data from '{}'",
                 self.source, self.rows, base.name
             ),
-            recovery: RecoverySpec::Perfusion {
-                rest_per_min: self.rest_per_min.value,
-                rest_low: rl,
-                rest_high: rh,
-                limit_fmvc: self.limit_fmvc,
-                limit_low: limit_low.min(self.limit_fmvc),
-                limit_high: limit_high.max(self.limit_fmvc),
+            recovery: match self.fast {
+                None => RecoverySpec::Perfusion {
+                    rest_per_min,
+                    rest_low: rl,
+                    rest_high: rh,
+                    limit_fmvc,
+                    limit_low,
+                    limit_high,
+                },
+                Some(fast) => RecoverySpec::Routed {
+                    rest_per_min,
+                    rest_low: rl,
+                    rest_high: rh,
+                    limit_fmvc,
+                    limit_low,
+                    limit_high,
+                    fast_rest_per_min: fast.rest_per_min.max(rh),
+                    fast_share_max: fast.share_max,
+                },
             },
+            recovery_source: base.recovery_source.clone(),
             k_source: format!(
                 "fit to {} (95 % confidence intervals as ranges)",
                 self.source

@@ -48,6 +48,32 @@ pub enum Recovery {
     /// below the limit load `f_lim`, and 0 at and above it (C¹ in f at both ends). At rest
     /// (`f = 0`) the rate is `R_rest`; from `f_lim` up the model is the paper's exactly.
     Perfusion { rest_per_min: f64, limit_fmvc: f64 },
+    /// Two deficits, a fast and a slow one, `c = 1 − D_fast − D_slow`, the new fatigue routed
+    /// between them by the load held (docs/fatigue-parameters.md, "A fast and a slow component"):
+    /// `dD_fast/dt = φ(f) k f c − R_fast(f) D_fast`, `dD_slow/dt = (1 − φ(f)) k f c − R_slow(f)
+    /// D_slow`. Each rate has the perfusion form of [`Recovery::Perfusion`] with the same limit
+    /// load; the fast share `φ(f)` is 0 up to [`ROUTE_FROM_FMVC`] and rises by a smoothstep to
+    /// `fast_share_max` at [`ROUTE_FULL_FMVC`]. With no fast deficit and loads below 25 %MVC it
+    /// is [`Recovery::Perfusion`] with `R_rest = slow_rest_per_min` exactly.
+    Routed {
+        slow_rest_per_min: f64,
+        fast_rest_per_min: f64,
+        limit_fmvc: f64,
+        fast_share_max: f64,
+    },
+}
+
+/// The load from which new fatigue starts to go to the fast deficit (ASSUMPTION: Byström et
+/// al. 1991's 25 %MVC, where short pauses help only as the single-rate model says).
+pub const ROUTE_FROM_FMVC: f64 = 0.25;
+/// The load from which the fast share is at its maximum (Sadamoto et al. 1983: muscle blood flow
+/// stops at about 50 %MVC; the ramp's ends are ASSUMPTION).
+pub const ROUTE_FULL_FMVC: f64 = 0.5;
+
+/// `x²(3 − 2x)`, the C¹ ramp of the perfusion rate and of the routing.
+#[inline]
+fn smoothstep(x: f64) -> f64 {
+    x * x * (3.0 - 2.0 * x)
 }
 
 impl Recovery {
@@ -60,18 +86,43 @@ impl Recovery {
             Recovery::Perfusion {
                 rest_per_min,
                 limit_fmvc,
-            } => {
-                let x = 1.0 - f / limit_fmvc;
-                if x > 0.0 {
-                    rest_per_min * x * x * (3.0 - 2.0 * x)
-                } else {
-                    0.0
-                }
             }
+            | Recovery::Routed {
+                slow_rest_per_min: rest_per_min,
+                limit_fmvc,
+                ..
+            } => rest_per_min * perfusion_share(f, limit_fmvc),
         }
     }
 
-    /// The rate at rest (`f = 0`) \[1/min\].
+    /// The fast deficit's recovery rate \[1/min\] while holding `f` (0 for the single-rate forms).
+    #[inline]
+    pub fn fast_rate_per_min(&self, f: f64) -> f64 {
+        match *self {
+            Recovery::Routed {
+                fast_rest_per_min,
+                limit_fmvc,
+                ..
+            } => fast_rest_per_min * perfusion_share(f, limit_fmvc),
+            _ => 0.0,
+        }
+    }
+
+    /// The share `φ(f)` of new fatigue that goes to the fast deficit (0 for the single-rate
+    /// forms).
+    #[inline]
+    pub fn fast_share(&self, f: f64) -> f64 {
+        match *self {
+            Recovery::Routed { fast_share_max, .. } => {
+                let x =
+                    ((f - ROUTE_FROM_FMVC) / (ROUTE_FULL_FMVC - ROUTE_FROM_FMVC)).clamp(0.0, 1.0);
+                fast_share_max * smoothstep(x)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// The rate at rest (`f = 0`) \[1/min\] (the slow deficit's, for the routed form).
     pub fn rest_rate_per_min(&self) -> f64 {
         self.rate_per_min(0.0)
     }
@@ -95,8 +146,39 @@ impl Recovery {
                     Ok(())
                 }
             }
+            Recovery::Routed {
+                slow_rest_per_min,
+                fast_rest_per_min,
+                limit_fmvc,
+                fast_share_max,
+            } => {
+                if !(rate_ok(slow_rest_per_min) && slow_rest_per_min > 0.0) {
+                    Err(FatigueError::BadR(slow_rest_per_min))
+                } else if !rate_ok(fast_rest_per_min) || fast_rest_per_min < slow_rest_per_min {
+                    Err(FatigueError::BadFastRate {
+                        fast: fast_rest_per_min,
+                        slow: slow_rest_per_min,
+                    })
+                } else if !(limit_fmvc.is_finite()
+                    && (0.01..=ROUTE_FROM_FMVC).contains(&limit_fmvc))
+                {
+                    Err(FatigueError::BadRoutedLimit(limit_fmvc))
+                } else if !(fast_share_max.is_finite() && (0.0..=1.0).contains(&fast_share_max)) {
+                    Err(FatigueError::BadShare(fast_share_max))
+                } else {
+                    Ok(())
+                }
+            }
         }
     }
+}
+
+/// The perfusion-limited share of the resting rate at load `f`: `x²(3 − 2x)`, `x = 1 − f/f_lim`,
+/// 0 from `f_lim` up.
+#[inline]
+fn perfusion_share(f: f64, limit_fmvc: f64) -> f64 {
+    let x = 1.0 - f / limit_fmvc;
+    if x > 0.0 { smoothstep(x) } else { 0.0 }
 }
 
 /// Parameters of one muscle group (half-joint) under the Ma et al. model.
@@ -125,6 +207,14 @@ pub struct MaState {
     pub capacity: f64,
     /// Fatigue index U \[min\], ≥ 0 (paper Eq. 1, 6).
     pub fatigue_u_min: f64,
+    /// The part of the lost capacity held in the fast deficit, in [0, 1 − capacity]; 0 except
+    /// under the routed recovery ([`Recovery::Routed`]).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub fast_deficit: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl MaState {
@@ -132,6 +222,7 @@ impl MaState {
     pub const FRESH: MaState = MaState {
         capacity: 1.0,
         fatigue_u_min: 0.0,
+        fast_deficit: 0.0,
     };
 }
 
@@ -152,6 +243,16 @@ pub enum FatigueError {
     BadR(f64),
     #[error("recovery limit load f_lim must be within 0.01..1 (fraction of MVC), got {0}")]
     BadLimit(f64),
+    #[error(
+        "the routed recovery's limit load f_lim must be within 0.01..{ROUTE_FROM_FMVC} (fraction of MVC, below the load where fatigue starts to go to the fast deficit), got {0}"
+    )]
+    BadRoutedLimit(f64),
+    #[error(
+        "the fast recovery rate must be finite, within 0..{R_MAX_PER_MIN} 1/min and at least the slow rate ({slow}), got {fast}"
+    )]
+    BadFastRate { fast: f64, slow: f64 },
+    #[error("the fast share of new fatigue must be within 0..1, got {0}")]
+    BadShare(f64),
     #[error("relative load f = F_load/MVC must be finite and in [0, 1] for {what}, got {value}")]
     BadLoad { what: &'static str, value: f64 },
     #[error("{what} must be finite and >= 0, got {value}")]
@@ -166,7 +267,21 @@ const C_FLOOR: f64 = f64::MIN_POSITIVE;
 /// Returns `(c1, ΔU)`; ΔU may be infinite when it exceeds a double.
 #[inline]
 pub fn step_exact(k: f64, r: f64, f: f64, c0: f64, t_min: f64) -> (f64, f64) {
-    PreparedHold::from_rates(k, r, f, t_min).step(c0)
+    let recovery = if r == 0.0 {
+        Recovery::None
+    } else {
+        Recovery::Constant { r_per_min: r }
+    };
+    let p = MaParams {
+        k_per_min: k,
+        recovery,
+    };
+    let mut s = MaState {
+        capacity: c0,
+        ..MaState::FRESH
+    };
+    p.prepare_min(f, t_min).hold(&mut s);
+    (s.capacity, s.fatigue_u_min)
 }
 
 /// A load held for a time, its per-step constants (exponentials) computed once, for a replay that
@@ -181,50 +296,63 @@ pub struct PreparedHold {
 }
 
 impl PreparedHold {
-    fn from_rates(k: f64, r: f64, f: f64, t_min: f64) -> Self {
-        let changes = !(k * f + r <= 0.0 || t_min <= 0.0);
+    fn new(p: &MaParams, f: f64, t_min: f64) -> Self {
+        let changes = !(p.k_per_min * f + p.r_at(f) <= 0.0 || t_min <= 0.0);
         PreparedHold {
             f,
-            step: changes.then(|| super::schedule::Prepared::from_rates(k, f, r, t_min)),
+            step: changes.then(|| {
+                super::schedule::Prepared::new(p, &super::schedule::HeldStep { f, t_min })
+            }),
         }
     }
 
-    /// The held step's constants, unless the group does not change from `c0` (unloaded and fully
-    /// rested: the common case of a muscle group the task never loads, whose exact update returns
-    /// the same numbers, bit for bit).
+    /// The held step's constants, unless the group does not change from `state` (unloaded and
+    /// fully rested: the common case of a muscle group the task never loads, whose exact update
+    /// returns the same numbers, bit for bit).
     #[inline]
-    fn changing(&self, c0: f64) -> Option<&super::schedule::Prepared<f64>> {
-        self.step.as_ref().filter(|_| !(self.f == 0.0 && c0 == 1.0))
+    fn changing(&self, state: &MaState) -> Option<&super::schedule::Prepared<f64>> {
+        self.step
+            .as_ref()
+            .filter(|_| !(self.f == 0.0 && state.capacity == 1.0 && state.fast_deficit == 0.0))
     }
 
-    /// `(c1, ΔU)` from capacity `c0`, as [`step_exact`].
-    #[inline]
-    pub fn step(&self, c0: f64) -> (f64, f64) {
-        match self.changing(c0) {
-            None => (c0, 0.0),
-            Some(p) => {
-                let (c1, du) = p.apply(c0);
-                (
-                    c1.clamp(C_FLOOR, 1.0),
-                    if self.f == 0.0 { 0.0 } else { du.max(0.0) },
-                )
-            }
+    fn point(state: &MaState) -> super::schedule::Point<f64> {
+        super::schedule::Point {
+            c: state.capacity,
+            d: state.fast_deficit,
         }
     }
 
-    /// The capacity after the step from `c0`, alone (the same number [`PreparedHold::step`]
+    /// The capacity after the step from `state`, alone (the same number [`PreparedHold::hold`]
     /// gives, without the fatigue index's logarithms).
     #[inline]
-    pub fn capacity(&self, c0: f64) -> f64 {
-        self.changing(c0)
-            .map_or(c0, |p| p.capacity(c0).clamp(C_FLOOR, 1.0))
+    pub fn capacity(&self, state: &MaState) -> f64 {
+        self.changing(state).map_or(state.capacity, |p| {
+            p.capacity(Self::point(state)).c.clamp(C_FLOOR, 1.0)
+        })
+    }
+
+    /// Moves `state`'s capacity and fast deficit over the step, as [`PreparedHold::hold`] does,
+    /// leaving its fatigue index alone.
+    #[inline]
+    pub fn advance(&self, state: &mut MaState) {
+        if let Some(p) = self.changing(state) {
+            let x = p.capacity(Self::point(state));
+            state.capacity = x.c.clamp(C_FLOOR, 1.0);
+            state.fast_deficit = x.d.clamp(0.0, 1.0);
+        }
     }
 
     /// Updates `state` as [`MaParams::hold`]; false once U no longer fits in a double.
     #[inline]
     pub fn hold(&self, state: &mut MaState) -> bool {
-        let (c1, du) = self.step(state.capacity);
-        state.capacity = c1;
+        let Some(p) = self.changing(state) else {
+            return true;
+        };
+        let (x, du) = p.apply(Self::point(state));
+        state.capacity = x.c.clamp(C_FLOOR, 1.0);
+        state.fast_deficit = x.d.clamp(0.0, 1.0);
+        let du = if self.f == 0.0 { 0.0 } else { du.max(0.0) };
         let u = state.fatigue_u_min + du;
         if u.is_finite() {
             state.fatigue_u_min = u;
@@ -289,7 +417,11 @@ impl MaParams {
     /// ([`PreparedHold`]).
     #[inline]
     pub fn prepare(&self, f: f64, dt_s: f64) -> PreparedHold {
-        PreparedHold::from_rates(self.k_per_min, self.r_at(f), f, s_to_min(dt_s))
+        self.prepare_min(f, s_to_min(dt_s))
+    }
+
+    fn prepare_min(&self, f: f64, t_min: f64) -> PreparedHold {
+        PreparedHold::new(self, f, t_min)
     }
 
     /// Time \[s\] for capacity to go from `c0` to `target` while holding `f`; `None` if it never
@@ -318,6 +450,45 @@ impl MaParams {
             return None;
         }
         self.time_to_capacity_s(c0, f, f)
+    }
+
+    /// Time \[s\] until capacity falls to the held load `f` from `state`, if that happens within
+    /// `dt_s`; `Some(0)` if it starts at or below it. With a fast deficit and a light load (the
+    /// routed recovery below its limit load) the capacity has no closed-form inverse and the
+    /// time is found by bisection on the exact step.
+    pub fn time_to_exhaustion_within_s(&self, state: &MaState, f: f64, dt_s: f64) -> Option<f64> {
+        if f <= 0.0 {
+            return None;
+        }
+        if state.capacity <= f {
+            return Some(0.0);
+        }
+        if state.fast_deficit == 0.0 || self.recovery.fast_rate_per_min(f) == 0.0 {
+            return self
+                .time_to_exhaustion_s(state.capacity, f)
+                .filter(|&t| t < dt_s);
+        }
+        let capacity_after = |t_s: f64| {
+            let mut s = *state;
+            self.prepare(f, t_s).advance(&mut s);
+            s.capacity
+        };
+        if capacity_after(dt_s) > f {
+            return None;
+        }
+        let (mut lo, mut hi) = (0.0, dt_s);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if capacity_after(mid) > f {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo <= 1e-12 * dt_s {
+                break;
+            }
+        }
+        Some(hi)
     }
 
     /// Maximum endurance time \[min\] of a fresh muscle holding `f` (paper Eq. 8 without
@@ -458,4 +629,167 @@ pub fn hold_all(params: &[MaParams], states: &mut [MaState], loads: &[f64], dt_s
         ok &= p.hold(s, f, dt_s);
     }
     ok
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The routed model's equations as docs/fatigue-parameters.md states them, integrated by
+    /// classical Runge–Kutta with 0.36-ms steps: `(capacity, fast deficit, U)` after holding
+    /// each `(f, seconds)` in turn from rest.
+    fn integrate(k: f64, rec: (f64, f64, f64, f64), holds: &[(f64, f64)]) -> (f64, f64, f64) {
+        let (slow, fast, f_lim, share) = rec;
+        let ramp = |x: f64| {
+            let x = x.clamp(0.0, 1.0);
+            x * x * (3.0 - 2.0 * x)
+        };
+        let perf = |f: f64| {
+            if f < f_lim {
+                ramp(1.0 - f / f_lim)
+            } else {
+                0.0
+            }
+        };
+        let (mut df, mut ds, mut u) = (0.0f64, 0.0f64, 0.0f64);
+        for &(f, t_s) in holds {
+            let phi = share * ramp((f - 0.25) / 0.25);
+            let (rf, rs) = (fast * perf(f), slow * perf(f));
+            let deriv = |df: f64, ds: f64| {
+                let c = 1.0 - df - ds;
+                (
+                    phi * k * f * c - rf * df,
+                    (1.0 - phi) * k * f * c - rs * ds,
+                    f / (c * c),
+                )
+            };
+            let n = (t_s / 60.0 / 6e-6).ceil() as usize;
+            let h = t_s / 60.0 / n as f64;
+            for _ in 0..n {
+                let a = deriv(df, ds);
+                let b = deriv(df + 0.5 * h * a.0, ds + 0.5 * h * a.1);
+                let c = deriv(df + 0.5 * h * b.0, ds + 0.5 * h * b.1);
+                let d = deriv(df + h * c.0, ds + h * c.1);
+                df += h / 6.0 * (a.0 + 2.0 * b.0 + 2.0 * c.0 + d.0);
+                ds += h / 6.0 * (a.1 + 2.0 * b.1 + 2.0 * c.1 + d.1);
+                u += h / 6.0 * (a.2 + 2.0 * b.2 + 2.0 * c.2 + d.2);
+            }
+        }
+        (1.0 - df - ds, df, u)
+    }
+
+    #[test]
+    fn routed_holds_match_an_integration_of_the_stated_equations() {
+        let rec = (0.319, 20.0, 0.085, 0.4);
+        let p = MaParams::with_recovery(
+            1.4,
+            Recovery::Routed {
+                slow_rest_per_min: rec.0,
+                fast_rest_per_min: rec.1,
+                limit_fmvc: rec.2,
+                fast_share_max: rec.3,
+            },
+        )
+        .unwrap();
+        // heavy holds feed the fast deficit (0.6, 0.35), light ones drain it with U still
+        // growing (0.03, 0.02: the last one long enough to pass the quadrature's 40 half-lives),
+        // a rest, and a load between the limit and the routing (0.1)
+        let holds = [
+            (0.6, 40.0),
+            (0.03, 6.0),
+            (0.0, 10.0),
+            (0.1, 5.0),
+            (0.35, 5.0),
+            (0.02, 200.0),
+            (0.45, 3.0),
+            (0.0, 1.0),
+        ];
+        let mut s = MaState::FRESH;
+        for (i, &(f, t)) in holds.iter().enumerate() {
+            assert!(p.hold(&mut s, f, t));
+            let (c, d, u) = integrate(1.4, rec, &holds[..=i]);
+            assert!(
+                (s.capacity - c).abs() < 1e-9,
+                "step {i}: c {} vs {c}",
+                s.capacity
+            );
+            assert!(
+                (s.fast_deficit - d).abs() < 1e-9,
+                "step {i}: d {} vs {d}",
+                s.fast_deficit
+            );
+            assert!(
+                (s.fatigue_u_min - u).abs() < 1e-9 * u,
+                "step {i}: U {} vs {u}",
+                s.fatigue_u_min
+            );
+        }
+        assert!(s.fast_deficit > 0.0);
+    }
+
+    #[test]
+    fn routed_below_the_routing_load_is_the_single_rate_model() {
+        let routed = MaParams::with_recovery(
+            0.9,
+            Recovery::Routed {
+                slow_rest_per_min: 0.37,
+                fast_rest_per_min: 20.0,
+                limit_fmvc: 0.085,
+                fast_share_max: 0.134,
+            },
+        )
+        .unwrap();
+        let single = MaParams::with_recovery(
+            0.9,
+            Recovery::Perfusion {
+                rest_per_min: 0.37,
+                limit_fmvc: 0.085,
+            },
+        )
+        .unwrap();
+        let (mut a, mut b) = (MaState::FRESH, MaState::FRESH);
+        for &(f, t) in &[
+            (0.2, 30.0),
+            (0.05, 5.0),
+            (0.25, 60.0),
+            (0.0, 20.0),
+            (0.12, 300.0),
+        ] {
+            routed.hold(&mut a, f, t);
+            single.hold(&mut b, f, t);
+            assert_eq!(a, b);
+        }
+    }
+
+    #[test]
+    fn the_routed_form_is_checked() {
+        let r = |slow, fast, lim, share| {
+            MaParams::with_recovery(
+                1.0,
+                Recovery::Routed {
+                    slow_rest_per_min: slow,
+                    fast_rest_per_min: fast,
+                    limit_fmvc: lim,
+                    fast_share_max: share,
+                },
+            )
+        };
+        assert!(r(0.3, 20.0, 0.085, 0.1).is_ok());
+        assert!(matches!(
+            r(0.3, 0.2, 0.085, 0.1),
+            Err(FatigueError::BadFastRate { .. })
+        ));
+        assert!(matches!(
+            r(0.3, 20.0, 0.3, 0.1),
+            Err(FatigueError::BadRoutedLimit(_))
+        ));
+        assert!(matches!(
+            r(0.3, 20.0, 0.085, 1.5),
+            Err(FatigueError::BadShare(_))
+        ));
+        assert!(matches!(
+            r(0.0, 20.0, 0.085, 0.1),
+            Err(FatigueError::BadR(_))
+        ));
+    }
 }

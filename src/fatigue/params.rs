@@ -31,6 +31,19 @@ pub enum RecoverySpec {
         limit_low: f64,
         limit_high: f64,
     },
+    /// Two deficits ([`Recovery::Routed`]): the slow deficit's rate and the limit load with their
+    /// ranges (the uncertainty analysis varies them as the perfusion form's), the fast deficit's
+    /// rate and its largest share of new fatigue at their values.
+    Routed {
+        rest_per_min: f64,
+        rest_low: f64,
+        rest_high: f64,
+        limit_fmvc: f64,
+        limit_low: f64,
+        limit_high: f64,
+        fast_rest_per_min: f64,
+        fast_share_max: f64,
+    },
 }
 
 impl RecoverySpec {
@@ -46,6 +59,49 @@ impl RecoverySpec {
                 rest_per_min,
                 limit_fmvc,
             },
+            RecoverySpec::Routed {
+                rest_per_min,
+                limit_fmvc,
+                fast_rest_per_min,
+                fast_share_max,
+                ..
+            } => Recovery::Routed {
+                slow_rest_per_min: rest_per_min,
+                fast_rest_per_min,
+                limit_fmvc,
+                fast_share_max,
+            },
+        }
+    }
+
+    /// `(rest, rest_low, rest_high, limit, limit_low, limit_high)` of the perfusion-limited forms.
+    pub fn ranges(&self) -> Option<(f64, f64, f64, f64, f64, f64)> {
+        match *self {
+            RecoverySpec::None => None,
+            RecoverySpec::Perfusion {
+                rest_per_min,
+                rest_low,
+                rest_high,
+                limit_fmvc,
+                limit_low,
+                limit_high,
+            }
+            | RecoverySpec::Routed {
+                rest_per_min,
+                rest_low,
+                rest_high,
+                limit_fmvc,
+                limit_low,
+                limit_high,
+                ..
+            } => Some((
+                rest_per_min,
+                rest_low,
+                rest_high,
+                limit_fmvc,
+                limit_low,
+                limit_high,
+            )),
         }
     }
 }
@@ -57,6 +113,9 @@ pub struct ParameterSet {
     pub name: String,
     pub description: String,
     pub recovery: RecoverySpec,
+    /// Where this set's recovery values come from, when not the shipped sets' common sources.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recovery_source: Option<String>,
     pub k_source: String,
     pub regions: std::collections::BTreeMap<String, RegionK>,
     /// Region values that differ for women / men.
@@ -164,14 +223,8 @@ impl ParameterSet {
                 ));
             }
         }
-        if let RecoverySpec::Perfusion {
-            rest_per_min,
-            rest_low,
-            rest_high,
-            limit_fmvc,
-            limit_low,
-            limit_high,
-        } = set.recovery
+        if let Some((rest_per_min, rest_low, rest_high, limit_fmvc, limit_low, limit_high)) =
+            set.recovery.ranges()
         {
             let r_ok = |v: f64| v.is_finite() && (0.0..=R_MAX_PER_MIN).contains(&v);
             let l_ok = |v: f64| v.is_finite() && (0.01..=1.0).contains(&v);
@@ -194,6 +247,15 @@ impl ParameterSet {
                 return Err(format!(
                     "{origin}: recovery: need 0.01 <= limit_low <= limit_fmvc <= limit_high <= 1"
                 ));
+            }
+        }
+        if matches!(set.recovery, RecoverySpec::Routed { .. }) {
+            // every variant the uncertainty analysis takes must be a valid routed recovery too
+            for rest in [Bound::Low, Bound::Value, Bound::High] {
+                for limit in [Bound::Low, Bound::Value, Bound::High] {
+                    MaParams::with_recovery(1.0, set.recovery_at(rest, limit))
+                        .map_err(|e| format!("{origin}: recovery: {e}"))?;
+                }
             }
         }
         Ok(set)
@@ -235,26 +297,35 @@ impl ParameterSet {
 
     /// The recovery at bounds of its two parameters (rest rate, limit load).
     pub fn recovery_at(&self, rest: Bound, limit: Bound) -> Recovery {
+        let Some((rest_per_min, rest_low, rest_high, limit_fmvc, limit_low, limit_high)) =
+            self.recovery.ranges()
+        else {
+            return Recovery::None;
+        };
+        let rest_per_min = match rest {
+            Bound::Low => rest_low,
+            Bound::Value => rest_per_min,
+            Bound::High => rest_high,
+        };
+        let limit_fmvc = match limit {
+            Bound::Low => limit_low,
+            Bound::Value => limit_fmvc,
+            Bound::High => limit_high,
+        };
         match self.recovery {
-            RecoverySpec::None => Recovery::None,
-            RecoverySpec::Perfusion {
-                rest_per_min,
-                rest_low,
-                rest_high,
+            RecoverySpec::Routed {
+                fast_rest_per_min,
+                fast_share_max,
+                ..
+            } => Recovery::Routed {
+                slow_rest_per_min: rest_per_min,
+                fast_rest_per_min,
                 limit_fmvc,
-                limit_low,
-                limit_high,
-            } => Recovery::Perfusion {
-                rest_per_min: match rest {
-                    Bound::Low => rest_low,
-                    Bound::Value => rest_per_min,
-                    Bound::High => rest_high,
-                },
-                limit_fmvc: match limit {
-                    Bound::Low => limit_low,
-                    Bound::Value => limit_fmvc,
-                    Bound::High => limit_high,
-                },
+                fast_share_max,
+            },
+            _ => Recovery::Perfusion {
+                rest_per_min,
+                limit_fmvc,
             },
         }
     }

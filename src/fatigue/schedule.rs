@@ -26,7 +26,7 @@
 //! its first and second derivatives with respect to one step's load.
 
 use super::dual::Real;
-use super::ma::MaParams;
+use super::ma::{MaParams, MaState};
 
 /// One held step of a cycle: relative load and duration \[min\].
 #[derive(Debug, Clone, Copy)]
@@ -47,11 +47,13 @@ pub struct ScaledU<T> {
 pub struct CyclesOutcome<T> {
     pub u_min: ScaledU<T>,
     pub capacity_end: T,
+    /// The fast deficit at the end (0 except under the routed recovery).
+    pub fast_deficit_end: T,
 }
 
-/// A step with its per-step constants precomputed.
+/// A step of the single-rate model (capacity alone) with its per-step constants precomputed.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Prepared<T> {
+pub(crate) struct Single<T> {
     f: T,
     /// No recovery during the step: `c1 = c0 s`, `ΔU = e2 / c0²`.
     no_recovery: bool,
@@ -82,17 +84,13 @@ fn g_of_w<T: Real>(w: T) -> T {
     }
 }
 
-impl<T: Real> Prepared<T> {
-    fn new(p: &MaParams, st: &HeldStep<T>) -> Self {
-        Self::from_rates(p.k_per_min, st.f, recovery_rate(p, st.f), st.t_min)
-    }
-
+impl<T: Real> Single<T> {
     /// Holding `f` for `t` minutes with fatigue rate `k` and recovery rate `r` (per minute).
     pub(crate) fn from_rates(k: f64, f: T, r: T, t: f64) -> Self {
         let lambda = f * k + r;
         if r.val() == 0.0 {
             let x = f * (k * t);
-            return Prepared {
+            return Single {
                 f,
                 no_recovery: true,
                 lambda,
@@ -108,7 +106,7 @@ impl<T: Real> Prepared<T> {
         let lt = lambda * t;
         let big = lt.val() > LT_SWITCH;
         let s = (-lt).exp();
-        Prepared {
+        Single {
             f,
             no_recovery: false,
             lambda,
@@ -173,7 +171,25 @@ impl<T: Real> Prepared<T> {
     }
 }
 
-/// `R(f)` for a generic number (the form of [`crate::fatigue::Recovery`], differentiable).
+/// `x²(3 − 2x)` of a generic number.
+#[inline]
+fn smoothstep<T: Real>(x: T) -> T {
+    x * x * (-(x * 2.0) + 3.0)
+}
+
+/// The perfusion share `x²(3 − 2x)`, `x = 1 − f/f_lim`, 0 from `f_lim` up, of a generic number.
+#[inline]
+fn perfusion_share<T: Real>(f: T, limit_fmvc: f64) -> T {
+    let x = -(f / limit_fmvc) + 1.0;
+    if x.val() > 0.0 {
+        smoothstep(x)
+    } else {
+        T::cst(0.0)
+    }
+}
+
+/// `R(f)` for a generic number (the form of [`crate::fatigue::Recovery`], differentiable; the
+/// slow deficit's rate for the routed form).
 fn recovery_rate<T: Real>(p: &MaParams, f: T) -> T {
     use super::ma::Recovery;
     match p.recovery {
@@ -182,14 +198,226 @@ fn recovery_rate<T: Real>(p: &MaParams, f: T) -> T {
         Recovery::Perfusion {
             rest_per_min,
             limit_fmvc,
+        }
+        | Recovery::Routed {
+            slow_rest_per_min: rest_per_min,
+            limit_fmvc,
+            ..
+        } => perfusion_share(f, limit_fmvc) * rest_per_min,
+    }
+}
+
+/// The fast deficit's rate `R_fast(f)` and the fast share `φ(f)` of new fatigue, for a generic
+/// number (both 0 except for the routed form).
+fn fast_rate_and_share<T: Real>(p: &MaParams, f: T) -> (T, T) {
+    use super::ma::{ROUTE_FROM_FMVC, ROUTE_FULL_FMVC, Recovery};
+    match p.recovery {
+        Recovery::Routed {
+            fast_rest_per_min,
+            limit_fmvc,
+            fast_share_max,
+            ..
         } => {
-            let x = -(f / limit_fmvc) + 1.0;
-            if x.val() > 0.0 {
-                x * x * (-(x * 2.0) + 3.0) * rest_per_min
-            } else {
+            let x = (f - ROUTE_FROM_FMVC) / (ROUTE_FULL_FMVC - ROUTE_FROM_FMVC);
+            let share = if x.val() <= 0.0 {
                 T::cst(0.0)
+            } else if x.val() >= 1.0 {
+                T::cst(fast_share_max)
+            } else {
+                smoothstep(x) * fast_share_max
+            };
+            (perfusion_share(f, limit_fmvc) * fast_rest_per_min, share)
+        }
+        _ => (T::cst(0.0), T::cst(0.0)),
+    }
+}
+
+/// A muscle group's state as the steps move it: capacity `c` and the fast deficit `d` (0 except
+/// under the routed recovery).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Point<T> {
+    pub c: T,
+    pub d: T,
+}
+
+/// `E(τ) = (e^{−R_f τ} − e^{−λτ}) / (λ − R_f)` (formed without cancellation when λ ≈ R_f): the
+/// capacity a unit of fast deficit has given back, beyond what the slow rate gives, after τ.
+#[inline]
+fn fast_refill<T: Real>(lambda: T, r_f: T, tau: f64) -> T {
+    let x = (lambda - r_f) * tau;
+    let decay = (-lambda * tau).exp();
+    if x.val().abs() < 1e-4 {
+        // e^{−λτ} τ (e^x − 1)/x
+        decay * tau * (x * (x * (1.0 / 24.0) + 1.0 / 6.0) * x + x * 0.5 + 1.0)
+    } else {
+        ((-r_f * tau).exp() - decay) / (lambda - r_f)
+    }
+}
+
+/// The fast deficit's recovery during a light step (the routed form below `f_lim`). With the
+/// fast deficit `d0` at the step's start, `d(τ) = d0 e^{−R_f τ}` and the capacity is the
+/// single-rate model's plus `(R_f − R_s) d0 E(τ)`; U = ∫ f/c² has no closed form along two
+/// exponentials and is summed by Gauss–Legendre (8 points on panels at most 2 wide in `R_f τ`
+/// and `λτ`) over `[0, t_q]`, where `R_f t_q ≤ 40`; beyond `t_q` the fast deficit is below
+/// `e^{−40}` of itself and the single-rate closed form takes over.
+#[derive(Debug, Clone, Copy)]
+struct Fast<T> {
+    r_f: T,
+    /// `R_f − R_s ≥ 0`.
+    g: T,
+    /// `e^{−R_f t}`.
+    q: T,
+    /// `E(t)`.
+    e_t: T,
+    t_q: f64,
+    panels: u32,
+    /// The single-rate step over `t − t_q` (`None` when `t_q = t`).
+    after: Option<Single<T>>,
+}
+
+/// Gauss–Legendre nodes and weights on [−1, 1], 8 points.
+const GL8: [(f64, f64); 4] = [
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (0.960_289_856_497_536_2, 0.101_228_536_290_376_3),
+];
+
+/// A held step with its per-step constants precomputed: the single-rate step of the capacity,
+/// and under the routed recovery the fast share of its new fatigue and the fast deficit's
+/// recovery.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Prepared<T> {
+    one: Single<T>,
+    /// `φ(f)`: the share of the capacity lost in this step that goes to the fast deficit.
+    phi: T,
+    fast: Option<Fast<T>>,
+}
+
+impl<T: Real> Prepared<T> {
+    pub(crate) fn new(p: &MaParams, st: &HeldStep<T>) -> Self {
+        let (k, f, t) = (p.k_per_min, st.f, st.t_min);
+        let r = recovery_rate(p, f);
+        let one = Single::from_rates(k, f, r, t);
+        let (r_f, phi) = fast_rate_and_share(p, f);
+        let fast = (r_f.val() > 0.0 && t > 0.0).then(|| {
+            let t_q = t.min(40.0 / r_f.val());
+            let span = r_f.val().max(one.lambda.val()) * t_q;
+            Fast {
+                r_f,
+                g: r_f - r,
+                q: (-r_f * t).exp(),
+                e_t: fast_refill(one.lambda, r_f, t),
+                t_q,
+                panels: ((span / 2.0).ceil() as u32).clamp(1, 256),
+                after: (t_q < t).then(|| Single::from_rates(k, f, r, t - t_q)),
+            }
+        });
+        Prepared { one, phi, fast }
+    }
+
+    /// The step's single-rate part.
+    pub(crate) fn single(&self) -> &Single<T> {
+        &self.one
+    }
+
+    /// The state after the step from `x`.
+    #[inline]
+    pub(crate) fn capacity(&self, x: Point<T>) -> Point<T> {
+        match &self.fast {
+            Some(fs) if x.d.val() != 0.0 => Point {
+                c: self.one.capacity(x.c) + fs.g * x.d * fs.e_t,
+                d: fs.q * x.d,
+            },
+            _ => {
+                let c1 = self.one.capacity(x.c);
+                Point {
+                    c: c1,
+                    d: self.routed_d(x, c1),
+                }
             }
         }
+    }
+
+    /// The fast deficit after a step without fast recovery: it gains `φ` of the capacity lost.
+    #[inline]
+    fn routed_d(&self, x: Point<T>, c1: T) -> T {
+        if self.phi.val() == 0.0 {
+            x.d
+        } else {
+            x.d + self.phi * (x.c - c1)
+        }
+    }
+
+    /// The state after the step from `x` and the U gained.
+    #[inline]
+    pub(crate) fn apply(&self, x: Point<T>) -> (Point<T>, T) {
+        match &self.fast {
+            Some(fs) if x.d.val() != 0.0 => {
+                let one = &self.one;
+                let (c0, d0) = (x.c, x.d);
+                let c_at = |tau: f64| {
+                    one.a
+                        + (c0 - one.a) * (-one.lambda * tau).exp()
+                        + fs.g * d0 * fast_refill(one.lambda, fs.r_f, tau)
+                };
+                let du = if one.f.val() == 0.0 {
+                    T::cst(0.0)
+                } else {
+                    let h = fs.t_q / fs.panels as f64;
+                    let mut acc = T::cst(0.0);
+                    for panel in 0..fs.panels {
+                        let mid = h * (panel as f64 + 0.5);
+                        for &(node, w) in &GL8 {
+                            for sgn in [-1.0, 1.0] {
+                                let c = c_at(mid + 0.5 * h * node * sgn);
+                                acc = acc + T::cst(0.5 * h * w) / (c * c);
+                            }
+                        }
+                    }
+                    let mut du = one.f * acc;
+                    if let Some(after) = &fs.after {
+                        du = du + after.apply(c_at(fs.t_q)).1;
+                    }
+                    du
+                };
+                (
+                    Point {
+                        c: one.capacity(c0) + fs.g * d0 * fs.e_t,
+                        d: fs.q * d0,
+                    },
+                    du,
+                )
+            }
+            _ => {
+                let (c1, du) = self.one.apply(x.c);
+                (
+                    Point {
+                        c: c1,
+                        d: self.routed_d(x, c1),
+                    },
+                    du,
+                )
+            }
+        }
+    }
+
+    /// The step as an affine map of the state, `x ↦ M x + v`: `(M, v)` with `M` row-major
+    /// `[[c←c, c←d], [d←c, d←d]]`.
+    fn affine(&self) -> ([T; 4], [T; 2]) {
+        let one = &self.one;
+        let zero = T::cst(0.0);
+        let (m_cd, m_dd) = match &self.fast {
+            Some(fs) => (fs.g * fs.e_t, fs.q),
+            None => (zero, T::cst(1.0)),
+        };
+        // heavy steps: d gains φ (c0 − c1) = φ (1 − s) c0 (no recovery: v = 0)
+        let m_dc = if self.phi.val() == 0.0 {
+            zero
+        } else {
+            self.phi * one.one_minus_s
+        };
+        ([one.s, m_cd, m_dc, m_dd], [one.a * one.one_minus_s, zero])
     }
 }
 
@@ -205,7 +433,7 @@ impl<T: Real> Cycle<T> {
         let mut c = c;
         let mut u = T::cst(0.0);
         for s in &self.steps {
-            let (c1, du) = s.apply(c);
+            let (c1, du) = s.one.apply(c);
             u = u + du;
             c = c1;
         }
@@ -215,6 +443,65 @@ impl<T: Real> Cycle<T> {
     fn u(&self, c: T) -> T {
         self.run(c).0
     }
+    /// U gained over one cycle from state `x` (capacity and fast deficit), and the state after.
+    #[inline]
+    fn run2(&self, x: Point<T>) -> (T, Point<T>) {
+        let mut x = x;
+        let mut u = T::cst(0.0);
+        for s in &self.steps {
+            let (x1, du) = s.apply(x);
+            u = u + du;
+            x = x1;
+        }
+        (u, x)
+    }
+    /// Whether any step sends new fatigue to the fast deficit.
+    fn feeds_fast(&self) -> bool {
+        self.steps.iter().any(|s| s.phi.val() != 0.0)
+    }
+    fn recovers(&self) -> bool {
+        self.steps.iter().any(|s| !s.one.no_recovery)
+    }
+    /// The cycle as an affine map of the state (see [`Prepared::affine`]).
+    fn affine(&self) -> ([T; 4], [T; 2]) {
+        let zero = T::cst(0.0);
+        let (mut m, mut v) = ([T::cst(1.0), zero, zero, T::cst(1.0)], [zero, zero]);
+        for s in &self.steps {
+            let (ms, vs) = s.affine();
+            m = mat_mul(ms, m);
+            let mv = mat_vec(ms, v);
+            v = [mv[0] + vs[0], mv[1] + vs[1]];
+        }
+        (m, v)
+    }
+}
+
+fn mat_mul<T: Real>(a: [T; 4], b: [T; 4]) -> [T; 4] {
+    [
+        a[0] * b[0] + a[1] * b[2],
+        a[0] * b[1] + a[1] * b[3],
+        a[2] * b[0] + a[3] * b[2],
+        a[2] * b[1] + a[3] * b[3],
+    ]
+}
+
+fn mat_vec<T: Real>(a: [T; 4], x: [T; 2]) -> [T; 2] {
+    [a[0] * x[0] + a[1] * x[1], a[2] * x[0] + a[3] * x[1]]
+}
+
+/// `Mⁿ` by repeated squaring.
+fn mat_pow<T: Real>(m: [T; 4], mut n: u64) -> [T; 4] {
+    let (zero, one) = (T::cst(0.0), T::cst(1.0));
+    let mut out = [one, zero, zero, one];
+    let mut base = m;
+    while n > 0 {
+        if n & 1 == 1 {
+            out = mat_mul(out, base);
+        }
+        base = mat_mul(base, base);
+        n >>= 1;
+    }
+    out
 }
 
 /// Gauss–Legendre nodes and weights on [−1, 1], 12 points.
@@ -236,7 +523,7 @@ const GL12: [(f64, f64); 6] = [
 /// use posture_opt::fatigue::schedule::{repeated_cycles, HeldStep};
 /// let p = MaParams::new(1.0, 0.5).unwrap();
 /// let steps = [HeldStep { f: 0.3, t_min: 0.1 }, HeldStep { f: 0.0, t_min: 0.05 }];
-/// let total = repeated_cycles(&p, &steps, 1.0, 500);
+/// let total = repeated_cycles(&p, &steps, &MaState::FRESH, 500);
 /// // the same by holding every step of every cycle
 /// let mut s = MaState::FRESH;
 /// for _ in 0..500 { for st in &steps { p.hold(&mut s, st.f, st.t_min * 60.0); } }
@@ -246,28 +533,38 @@ const GL12: [(f64, f64); 6] = [
 pub fn repeated_cycles<T: Real>(
     p: &MaParams,
     steps: &[HeldStep<T>],
-    c0: f64,
+    start: &MaState,
     n_cycles: u64,
 ) -> CyclesOutcome<T> {
     let cycle = Cycle {
         steps: steps.iter().map(|s| Prepared::new(p, s)).collect(),
     };
-    let zero = T::cst(0.0);
-    let c0t = T::cst(c0);
+    let (c0, d0) = (start.capacity, start.fast_deficit);
     if n_cycles == 0 || cycle.steps.is_empty() {
         return CyclesOutcome {
             u_min: ScaledU {
-                u: zero,
+                u: T::cst(0.0),
                 ln_scale: 0.0,
             },
-            capacity_end: c0t,
+            capacity_end: T::cst(c0),
+            fast_deficit_end: T::cst(d0),
         };
     }
+    if d0 != 0.0 || cycle.feeds_fast() {
+        return routed_cycles(&cycle, c0, d0, n_cycles);
+    }
+    single_cycles(&cycle, c0, n_cycles)
+}
+
+/// [`repeated_cycles`] of the single-rate model: the state is the capacity alone.
+fn single_cycles<T: Real>(cycle: &Cycle<T>, c0: f64, n_cycles: u64) -> CyclesOutcome<T> {
+    let zero = T::cst(0.0);
+    let c0t = T::cst(c0);
     // Cycle map c ↦ A c + B; ln A = −Σ λ_i t_i.
     let mut a_map = T::cst(1.0);
     let mut b_map = zero;
     let mut ln_a = zero;
-    for s in &cycle.steps {
+    for s in cycle.steps.iter().map(Prepared::single) {
         a_map = a_map * s.s;
         b_map = b_map * s.s + s.a * s.one_minus_s;
         ln_a = ln_a - s.lt;
@@ -281,10 +578,11 @@ pub fn repeated_cycles<T: Real>(
                 ln_scale: 0.0,
             },
             capacity_end: c0t,
+            fast_deficit_end: zero,
         };
     }
-    if cycle.steps.iter().all(|s| s.no_recovery) {
-        return no_recovery_total(&cycle, c0t, ln_a, n_cycles);
+    if !cycle.recovers() {
+        return no_recovery_total(cycle, c0t, ln_a, n_cycles);
     }
     let c_star = b_map / -ln_a.exp_m1();
     let mut c = c0t;
@@ -297,9 +595,9 @@ pub fn repeated_cycles<T: Real>(
         if settled || (slow && n >= EXACT_CYCLES) {
             let m = n_cycles - n;
             let tail = if settled {
-                taylor_tail(&cycle, c_star, c - c_star, a_map, ln_a, m)
+                taylor_tail(|c| cycle.u(c), c_star, c - c_star, a_map, ln_a, m)
             } else {
-                euler_maclaurin_tail(&cycle, c_star, c - c_star, ln_a, m)
+                euler_maclaurin_tail(|c| cycle.u(c), c_star, c - c_star, ln_a, m)
             };
             u = u + tail;
             c = c_star + (c - c_star) * (ln_a * m as f64).exp();
@@ -315,18 +613,120 @@ pub fn repeated_cycles<T: Real>(
     if !u.val().is_finite() {
         // U passed the largest double: the value in logarithms (its derivatives are meaningless
         // so far past exhaustion and are dropped).
-        let (ln_u, ln_c) = log_domain_cycles(&cycle, c0, n_cycles);
-        return CyclesOutcome {
-            u_min: ScaledU {
-                u: T::cst(1.0),
-                ln_scale: ln_u,
-            },
-            capacity_end: T::cst(ln_c.exp()),
-        };
+        return overflowed(cycle, c0, n_cycles, zero);
     }
     CyclesOutcome {
         u_min: ScaledU { u, ln_scale: 0.0 },
         capacity_end: c,
+        fast_deficit_end: zero,
+    }
+}
+
+/// [`repeated_cycles`] with a fast deficit (the routed recovery): the state `(c, d)` moves by a
+/// 2 × 2 affine map per cycle, `x ↦ M x + v`, whose eigenvalues are real (M is a product of
+/// non-negative matrices). Cycles are summed exactly until the faster mode has died out (the
+/// state within 10⁻¹³ of the line through the periodic steady state `x*` along the slower
+/// mode's eigenvector); from there the state moves along that line, `c − c* = δ ρⁿ`, and the
+/// rest is summed by the single-rate model's tails with `u` evaluated along the line. Without
+/// recovery in any step the capacity is the single-rate model's and the fast deficit gains
+/// `φ` of each loss. A cycle whose slower mode leaves the capacity unchanged, or whose modes
+/// have not separated after [`EXACT_CYCLES`] cycles, is summed exactly to the end (O(n)).
+fn routed_cycles<T: Real>(cycle: &Cycle<T>, c0: f64, d0: f64, n_cycles: u64) -> CyclesOutcome<T> {
+    let zero = T::cst(0.0);
+    let (m, v) = cycle.affine();
+    if !cycle.recovers() {
+        // c_n = c0 Aⁿ as without routing; d gains κ c per cycle (κ = M's d←c entry)
+        let single = single_cycles(cycle, c0, n_cycles);
+        let ln_a = cycle.steps.iter().fold(zero, |acc, s| acc - s.one.lt);
+        let geometric = if ln_a.val() < 0.0 {
+            (ln_a * n_cycles as f64).exp_m1() / ln_a.exp_m1()
+        } else {
+            T::cst(n_cycles as f64)
+        };
+        return CyclesOutcome {
+            fast_deficit_end: m[2] * c0 * geometric + d0,
+            ..single
+        };
+    }
+    // the periodic steady state x* = (I − M)⁻¹ v
+    let (a11, a12, a21, a22) = (-m[0] + 1.0, -m[1], -m[2], -m[3] + 1.0);
+    let det = a11 * a22 - a12 * a21;
+    let star = Point {
+        c: (a22 * v[0] - a12 * v[1]) / det,
+        d: (a11 * v[1] - a21 * v[0]) / det,
+    };
+    // the slower mode: the larger eigenvalue ρ and its eigenvector, scaled to a unit of capacity
+    let trace = m[0] + m[3];
+    let disc = trace * trace - (m[0] * m[3] - m[1] * m[2]) * 4.0;
+    let rho = (trace + if disc.val() > 0.0 { disc.sqrt() } else { zero }) * 0.5;
+    let (e1, e2) = ([m[1], rho - m[0]], [rho - m[3], m[2]]);
+    let norm = |e: &[T; 2]| e[0].val().hypot(e[1].val());
+    let e = if norm(&e1) >= norm(&e2) { e1 } else { e2 };
+    let line = (e[0].val().abs() > 1e-9 * norm(&e) && rho.val() > 0.0).then(|| e[1] / e[0]);
+    let ln_rho = rho.ln();
+    let slow = -ln_rho.val() < 0.2;
+    let mut x = Point {
+        c: T::cst(c0),
+        d: T::cst(d0),
+    };
+    let mut u = zero;
+    let mut n = 0u64;
+    while n < n_cycles {
+        if let Some(w) = line {
+            let dc = x.c - star.c;
+            let off = (x.d - star.d).val() - w.val() * dc.val();
+            let settled = dc.val().abs() <= 1e-3 * star.c.val();
+            if off.abs() <= 1e-13 && (settled || (slow && n >= EXACT_CYCLES)) {
+                let left = n_cycles - n;
+                let along = |c: T| {
+                    cycle
+                        .run2(Point {
+                            c,
+                            d: star.d + w * (c - star.c),
+                        })
+                        .0
+                };
+                u = u + if settled {
+                    taylor_tail(along, star.c, dc, rho, ln_rho, left)
+                } else {
+                    euler_maclaurin_tail(along, star.c, dc, ln_rho, left)
+                };
+                let decay = (ln_rho * left as f64).exp();
+                x = Point {
+                    c: star.c + dc * decay,
+                    d: star.d + (x.d - star.d) * decay,
+                };
+                break;
+            }
+        }
+        let (du, x1) = cycle.run2(x);
+        u = u + du;
+        x = x1;
+        n += 1;
+    }
+    if !u.val().is_finite() {
+        // U passed the largest double: bounded by the single-rate model's value in logarithms
+        // (the fast deficit only gives capacity back sooner).
+        return overflowed(cycle, c0, n_cycles, x.d);
+    }
+    CyclesOutcome {
+        u_min: ScaledU { u, ln_scale: 0.0 },
+        capacity_end: x.c,
+        fast_deficit_end: x.d,
+    }
+}
+
+/// The outcome of cycles whose U passed the largest double: U and the capacity from the
+/// single-rate steps held in logarithms.
+fn overflowed<T: Real>(cycle: &Cycle<T>, c0: f64, n_cycles: u64, d_end: T) -> CyclesOutcome<T> {
+    let (ln_u, ln_c) = log_domain_cycles(cycle, c0, n_cycles);
+    CyclesOutcome {
+        u_min: ScaledU {
+            u: T::cst(1.0),
+            ln_scale: ln_u,
+        },
+        capacity_end: T::cst(ln_c.exp()),
+        fast_deficit_end: d_end,
     }
 }
 
@@ -346,7 +746,7 @@ fn log_domain_cycles<T: Real>(cycle: &Cycle<T>, c0: f64, n_cycles: u64) -> (f64,
     let mut ln_u = f64::NEG_INFINITY;
     let mut ln_c = c0.ln();
     for _ in 0..n_cycles {
-        for st in &cycle.steps {
+        for st in cycle.steps.iter().map(Prepared::single) {
             let f = st.f.val();
             if st.no_recovery {
                 let x = st.lt.val();
@@ -383,15 +783,16 @@ fn log_domain_cycles<T: Real>(cycle: &Cycle<T>, c0: f64, n_cycles: u64) -> (f64,
 }
 
 /// The lowest capacity a group reaches at the end of the steps marked in `mask` over
-/// `n_cycles` repetitions (capacity falls through a loaded step, so a step's end is its lowest
-/// point; across cycles the capacity at a given step moves monotonically toward its periodic
-/// steady state, so the first and the last cycle bound it). With its derivatives when `T` is
+/// `n_cycles` repetitions from `start` (capacity falls through a loaded step, so a step's end is
+/// its lowest point; across cycles the capacity at a given step moves monotonically toward its
+/// periodic steady state — with a fast deficit, once its faster mode has died out, within a few
+/// cycles — so the first and the last cycle bound it). With its derivatives when `T` is
 /// [`Dual2`](super::dual::Dual2).
 pub fn lowest_end_capacity<T: Real>(
     p: &MaParams,
     steps: &[HeldStep<T>],
     mask: &[bool],
-    c0: f64,
+    start: &MaState,
     n_cycles: u64,
 ) -> T {
     let cycle = Cycle {
@@ -400,27 +801,53 @@ pub fn lowest_end_capacity<T: Real>(
     let mut a_map = T::cst(1.0);
     let mut b_map = T::cst(0.0);
     let mut ln_a = T::cst(0.0);
-    for s in &cycle.steps {
+    for s in cycle.steps.iter().map(Prepared::single) {
         a_map = a_map * s.s;
         b_map = b_map * s.s + s.a * s.one_minus_s;
         ln_a = ln_a - s.lt;
     }
-    let first = T::cst(c0);
+    let first = Point {
+        c: T::cst(start.capacity),
+        d: T::cst(start.fast_deficit),
+    };
     let last = if n_cycles <= 1 || -ln_a.val() <= 0.0 {
         first
-    } else if cycle.steps.iter().all(|s| s.no_recovery) {
-        (ln_a * (n_cycles - 1) as f64).exp() * c0
+    } else if !cycle.recovers() {
+        Point {
+            c: (ln_a * (n_cycles - 1) as f64).exp() * start.capacity,
+            ..first
+        }
+    } else if start.fast_deficit != 0.0 || cycle.feeds_fast() {
+        // x* + M^{n−1} (x0 − x*)
+        let (m, v) = cycle.affine();
+        let (a11, a12, a21, a22) = (-m[0] + 1.0, -m[1], -m[2], -m[3] + 1.0);
+        let det = a11 * a22 - a12 * a21;
+        let star = [
+            (a22 * v[0] - a12 * v[1]) / det,
+            (a11 * v[1] - a21 * v[0]) / det,
+        ];
+        let moved = mat_vec(
+            mat_pow(m, n_cycles - 1),
+            [first.c - star[0], first.d - star[1]],
+        );
+        Point {
+            c: star[0] + moved[0],
+            d: star[1] + moved[1],
+        }
     } else {
         let c_star = b_map / -ln_a.exp_m1();
-        c_star + (first - c_star) * (ln_a * (n_cycles - 1) as f64).exp()
+        Point {
+            c: c_star + (first.c - c_star) * (ln_a * (n_cycles - 1) as f64).exp(),
+            ..first
+        }
     };
     let mut lowest = T::cst(f64::INFINITY);
     for start in [first, last] {
-        let mut c = start;
+        let mut x = start;
         for (s, m) in cycle.steps.iter().zip(mask) {
-            c = s.apply(c).0;
-            if *m && c.val() < lowest.val() {
-                lowest = c;
+            x = s.capacity(x);
+            if *m && x.c.val() < lowest.val() {
+                lowest = x.c;
             }
         }
     }
@@ -449,15 +876,16 @@ fn no_recovery_total<T: Real>(cycle: &Cycle<T>, c0: T, ln_a: T, n_cycles: u64) -
             ln_scale,
         },
         capacity_end: c_end_ln.exp(),
+        fast_deficit_end: T::cst(0.0),
     }
 }
 
 /// `Σ_{j<m} u(c* + δ A^j)` for small `δ`: `m u(c*) + u' δ G₁ + ½ u'' δ² G₂`.
-fn taylor_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, a_map: T, ln_a: T, m: u64) -> T {
+fn taylor_tail<T: Real>(u: impl Fn(T) -> T, c_star: T, delta: T, a_map: T, ln_a: T, m: u64) -> T {
     let h = (delta.val().abs()).max(1e-6 * c_star.val());
-    let u0 = cycle.u(c_star);
-    let up = cycle.u(c_star + h);
-    let um = cycle.u(c_star - h);
+    let u0 = u(c_star);
+    let up = u(c_star + h);
+    let um = u(c_star - h);
     let u1 = (up - um) / (2.0 * h);
     let u2 = (up - u0 * 2.0 + um) / (h * h);
     let mf = m as f64;
@@ -469,10 +897,10 @@ fn taylor_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, a_map: T, ln_a: T
 
 /// `Σ_{j<m} φ(j)`, `φ(x) = u(c* + δ e^{−Lx})`, by Euler–Maclaurin with the integral by
 /// Gauss–Legendre in `y = δ e^{−Lx}`.
-fn euler_maclaurin_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, ln_a: T, m: u64) -> T {
+fn euler_maclaurin_tail<T: Real>(u: impl Fn(T) -> T, c_star: T, delta: T, ln_a: T, m: u64) -> T {
     let mf = m as f64;
     let big_l = -ln_a; // > 0
-    let u_star = cycle.u(c_star);
+    let u_star = u(c_star);
     let y0 = delta;
     let y1 = delta * (ln_a * (mf - 1.0)).exp();
     // ∫_0^{m−1} φ dx = (1/L) ∫_{ln|y1|}^{ln|y0|} u(c* + y) d ln|y|: composite Gauss–Legendre on
@@ -498,29 +926,23 @@ fn euler_maclaurin_tail<T: Real>(cycle: &Cycle<T>, c_star: T, delta: T, ln_a: T,
         for &(x, w) in &GL12 {
             for sgn in [-1.0, 1.0] {
                 let y = (mid + step * (0.5 * x * sgn)).exp() * sign;
-                integral = integral + cycle.u(c_star + y) * (step * (0.5 * w));
+                integral = integral + u(c_star + y) * (step * (0.5 * w));
             }
         }
     }
     let integral = (integral + u_star * (ln_lo - ln_lo_full)) / big_l;
-    let phi0 = cycle.u(c_star + y0);
-    let phi1 = cycle.u(c_star + y1);
+    let phi0 = u(c_star + y0);
+    let phi1 = u(c_star + y1);
     // With g(y) = u(c* + y) and d/dx = −L y d/dy:
     //   φ' = −L y g',  φ''' = −L³ (y g' + 3 y² g'' + y³ g''').
     let du_dc = |c: T| {
         let h = 1e-6 * c.val();
-        (cycle.u(c + h) - cycle.u(c - h)) / (2.0 * h)
+        (u(c + h) - u(c - h)) / (2.0 * h)
     };
     let d3phi = |y: T| {
         let c = c_star + y;
         let h = 0.02 * c.val();
-        let (um2, um1, u0, up1, up2) = (
-            cycle.u(c - 2.0 * h),
-            cycle.u(c - h),
-            cycle.u(c),
-            cycle.u(c + h),
-            cycle.u(c + 2.0 * h),
-        );
+        let (um2, um1, u0, up1, up2) = (u(c - 2.0 * h), u(c - h), u(c), u(c + h), u(c + 2.0 * h));
         let g2 = (up1 - u0 * 2.0 + um1) / (h * h);
         let g3 = (up2 - up1 * 2.0 + um1 * 2.0 - um2) / (2.0 * h * h * h);
         -big_l * big_l * big_l * (y * du_dc(c) + y * y * g2 * 3.0 + y * y * y * g3)
@@ -540,7 +962,7 @@ mod tests {
     fn simulate(p: &MaParams, steps: &[(f64, f64)], c0: f64, n: u64) -> (f64, f64) {
         let mut s = MaState {
             capacity: c0,
-            fatigue_u_min: 0.0,
+            ..MaState::FRESH
         };
         for _ in 0..n {
             for &(f, t) in steps {
@@ -563,7 +985,89 @@ mod tests {
                 },
             )
             .unwrap(),
+            routed(1.4, 0.4),
         ]
+    }
+
+    fn routed(k: f64, share: f64) -> MaParams {
+        MaParams::with_recovery(
+            k,
+            Recovery::Routed {
+                slow_rest_per_min: 0.319,
+                fast_rest_per_min: 20.0,
+                limit_fmvc: 0.085,
+                fast_share_max: share,
+            },
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn routed_cycles_match_step_by_step_holds_from_any_state() {
+        // heavy steps feed the fast deficit, light ones drain it; some cycles settle within a
+        // few cycles, some (short rests) only slowly
+        let cycles: [&[(f64, f64)]; 4] = [
+            &[(0.6, 0.05), (0.03, 0.1)],
+            &[(0.4, 0.2), (0.0, 0.02), (0.1, 0.1), (0.02, 0.05)],
+            &[(0.35, 0.1), (0.0, 0.01)],
+            &[(0.05, 0.3), (0.0, 0.1)],
+        ];
+        let p = routed(1.4, 0.4);
+        for steps in cycles {
+            for &n in &[1u64, 7, 60, 180, 1440] {
+                for start in [
+                    MaState::FRESH,
+                    MaState {
+                        capacity: 0.55,
+                        fatigue_u_min: 0.0,
+                        fast_deficit: 0.2,
+                    },
+                ] {
+                    let hs: Vec<HeldStep<f64>> = steps
+                        .iter()
+                        .map(|&(f, t_min)| HeldStep { f, t_min })
+                        .collect();
+                    let r = repeated_cycles(&p, &hs, &start, n);
+                    let mut s = start;
+                    for _ in 0..n {
+                        for &(f, t) in steps {
+                            p.hold(&mut s, f, t * 60.0);
+                        }
+                    }
+                    let total = r.u_min.u * r.u_min.ln_scale.exp();
+                    let u = s.fatigue_u_min;
+                    assert!(
+                        (total - u).abs() <= 2e-6 * u.max(1e-12),
+                        "{steps:?} n={n} {start:?}: {total} vs {u}"
+                    );
+                    assert!(
+                        (r.capacity_end - s.capacity).abs() < 1e-9,
+                        "{steps:?} n={n}"
+                    );
+                    assert!(
+                        (r.fast_deficit_end - s.fast_deficit).abs() < 1e-9,
+                        "{steps:?} n={n}: {} vs {}",
+                        r.fast_deficit_end,
+                        s.fast_deficit
+                    );
+                    let mask = vec![true; hs.len()];
+                    let lowest = lowest_end_capacity(&p, &hs, &mask, &start, n);
+                    // the lowest step end over the cycles, by holding them all
+                    let mut s = start;
+                    let mut seen = f64::INFINITY;
+                    for _ in 0..n {
+                        for &(f, t) in steps {
+                            p.hold(&mut s, f, t * 60.0);
+                            seen = seen.min(s.capacity);
+                        }
+                    }
+                    assert!(
+                        (lowest - seen).abs() < 1e-9,
+                        "{steps:?} n={n}: {lowest} vs {seen}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
@@ -582,7 +1086,15 @@ mod tests {
                             .iter()
                             .map(|&(f, t_min)| HeldStep { f, t_min })
                             .collect();
-                        let r = repeated_cycles(&p, &hs, c0, n);
+                        let r = repeated_cycles(
+                            &p,
+                            &hs,
+                            &MaState {
+                                capacity: c0,
+                                ..MaState::FRESH
+                            },
+                            n,
+                        );
                         let (u, c) = simulate(&p, steps, c0, n);
                         let total = r.u_min.u * r.u_min.ln_scale.exp();
                         assert!(
@@ -624,7 +1136,17 @@ mod tests {
                             t_min: 0.1,
                         },
                     ];
-                    repeated_cycles(&p, &hs, 0.9, 300).u_min.u
+                    repeated_cycles(
+                        &p,
+                        &hs,
+                        &MaState {
+                            capacity: 0.9,
+                            ..MaState::FRESH
+                        },
+                        300,
+                    )
+                    .u_min
+                    .u
                 };
                 let d = run(Dual2::variable(f));
                 let h = 1e-5;
@@ -667,7 +1189,7 @@ mod tests {
             HeldStep { f: 0.5, t_min: 0.5 },
             HeldStep { f: 0.0, t_min: 0.1 },
         ];
-        let r = repeated_cycles(&p, &hs, 1.0, 8 * 100);
+        let r = repeated_cycles(&p, &hs, &MaState::FRESH, 8 * 100);
         // ln U = ln(u(1)) + 2NL − ln(e^{2L} − 1) with u(1) = (e^{2kft} − 1)/2k, L = kft
         let l = 0.25f64;
         let expected = ((2.0 * l).exp_m1() / 2.0).ln() + 2.0 * 800.0 * l - (2.0 * l).exp_m1().ln();

@@ -212,12 +212,7 @@ impl<'t> FatigueCost<'t> {
         self.cycle_steps(h, f, &mut steps);
         self.scratch_value = steps;
         let st = self.state[h];
-        let r = repeated_cycles(
-            &self.task.fatigue[h],
-            &self.scratch_value,
-            st.capacity,
-            self.cycles,
-        );
+        let r = repeated_cycles(&self.task.fatigue[h], &self.scratch_value, &st, self.cycles);
         let s = r.u_min.ln_scale;
         let u = r.u_min.u + st.fatigue_u_min * (-s).exp();
         self.value_cache[h] = Some((bits, u, s));
@@ -231,12 +226,7 @@ impl<'t> FatigueCost<'t> {
         self.cycle_steps(h, f, &mut steps);
         self.scratch = steps;
         let st = self.state[h];
-        let r = repeated_cycles(
-            &self.task.fatigue[h],
-            &self.scratch,
-            st.capacity,
-            self.cycles,
-        );
+        let r = repeated_cycles(&self.task.fatigue[h], &self.scratch, &st, self.cycles);
         let s = r.u_min.ln_scale;
         let u0 = st.fatigue_u_min * (-s).exp();
         (
@@ -314,7 +304,7 @@ impl LoadCost for FatigueCost<'_> {
             &self.task.fatigue[h],
             &self.scratch,
             &self.in_group,
-            self.state[h].capacity,
+            &self.state[h],
             self.cycles,
         );
         let r = (c.v - EXHAUSTION_MARGIN, c.d);

@@ -1071,15 +1071,12 @@ impl<'t> Planner<'t> {
                     let c0 = state[h].capacity;
                     // capacity moves monotonically within the step, so the group gives out
                     // within it only if it starts or ends at or below its load
-                    if !(f[h] > 0.0 && (c0 <= f[h] || holds[h].capacity(c0) <= f[h] * (1.0 + 1e-9)))
+                    if !(f[h] > 0.0
+                        && (c0 <= f[h] || holds[h].capacity(&state[h]) <= f[h] * (1.0 + 1e-9)))
                     {
                         continue;
                     }
-                    let te = if c0 <= f[h] {
-                        Some(0.0)
-                    } else {
-                        t.fatigue[h].time_to_exhaustion_s(c0, f[h])
-                    };
+                    let te = t.fatigue[h].time_to_exhaustion_within_s(&state[h], f[h], dur);
                     if let Some(te) = te
                         && te < dur
                         && ex.is_none_or(|(t0, _)| te < t0)
@@ -1438,17 +1435,25 @@ pub fn plan_task(task: &Task) -> Result<Plan, PlanError> {
 /// The fatigue model in words: the paper's, with the recovery forms its parameters use.
 fn fatigue_model_name(params: &[crate::fatigue::MaParams]) -> String {
     use crate::fatigue::Recovery;
-    let perfusion = params
-        .iter()
-        .any(|p| matches!(p.recovery, Recovery::Perfusion { .. }));
-    let constant = params
-        .iter()
-        .any(|p| matches!(p.recovery, Recovery::Constant { .. }));
-    match (perfusion, constant) {
-        (false, false) => "ma2009 (no recovery)".into(),
-        (true, false) => "ma2009 with load-dependent (perfusion-limited) recovery".into(),
-        (false, true) => "ma2009 with constant-rate recovery".into(),
-        (true, true) => "ma2009 with perfusion-limited and constant-rate recovery".into(),
+    let mut forms: Vec<&str> = Vec::new();
+    for p in params {
+        let form = match p.recovery {
+            Recovery::None => continue,
+            Recovery::Constant { .. } => "constant-rate",
+            Recovery::Perfusion { .. } => "load-dependent (perfusion-limited)",
+            Recovery::Routed { .. } => {
+                "load-dependent (perfusion-limited) two-deficit (fast and slow)"
+            }
+        };
+        if !forms.contains(&form) {
+            forms.push(form);
+        }
+    }
+    forms.sort_unstable();
+    if forms.is_empty() {
+        "ma2009 (no recovery)".into()
+    } else {
+        format!("ma2009 with {} recovery", forms.join(" and "))
     }
 }
 

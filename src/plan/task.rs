@@ -301,7 +301,7 @@ impl Default for ReplanFile {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FatigueFile {
-    /// Named parameter set: `default-2026`, `frey-law-avin-2010` or `ma2009`.
+    /// Named parameter set: `default-2026`, `routed-2026` (two-deficit recovery), `frey-law-avin-2010` or `ma2009`.
     #[serde(default)]
     pub parameters: Option<String>,
     /// A parameter set in a file (relative to the task file), e.g. written by `posture-opt fit`;
@@ -1526,8 +1526,11 @@ fn resolve_fatigue(
             set: s.name.clone(),
             description: s.description.clone(),
             k_source: s.k_source.clone(),
-            recovery_source: match s.recovery {
-                crate::fatigue::params::RecoverySpec::None => "no recovery (Ma et al. 2009)".into(),
+            recovery_source: match (&s.recovery, &s.recovery_source) {
+                (crate::fatigue::params::RecoverySpec::None, _) => {
+                    "no recovery (Ma et al. 2009)".into()
+                }
+                (_, Some(own)) => own.clone(),
                 _ => sets
                     .recovery_sources
                     .values()

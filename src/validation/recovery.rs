@@ -62,6 +62,8 @@ pub struct RecoveryValidation {
     pub total: usize,
 }
 
+const SK: &str = "Stull & Kearney (1978) Med Sci Sports 10:109";
+
 const LOADS: [f64; 4] = [0.2, 0.4, 0.6, 0.8];
 
 /// Endurance \[s\] of a fresh group working `on_s` at `f` and resting `off_s`, repeated (the
@@ -206,10 +208,9 @@ pub fn recovery_validation(
         .time_to_exhaustion_s(1.0, 0.66)
         .unwrap_or(f64::INFINITY);
     let after_rest = |rest_min: f64| {
-        let mut s = MaState {
-            capacity: 0.66,
-            fatigue_u_min: 0.0,
-        };
+        // the first bout to exhaustion (its fast deficit too, under the routed recovery)
+        let mut s = MaState::FRESH;
+        knee.hold(&mut s, 0.66, first);
         knee.hold(&mut s, 0.0, rest_min * 60.0);
         knee.time_to_exhaustion_s(s.capacity, 0.66).unwrap_or(0.0) / first
     };
@@ -234,21 +235,25 @@ pub fn recovery_validation(
     // Stull & Kearney: a documented deviation of one time constant.
     let k_sk = std::f64::consts::LN_2 / (0.5 * 120.25 / 60.0);
     let sk = MaParams::with_recovery(k_sk, set.recovery.recovery())?;
-    let mut s = MaState {
-        capacity: 0.5,
-        fatigue_u_min: 0.0,
-    };
+    let mut s = MaState::FRESH;
+    sk.hold(&mut s, 0.5, 120.25);
     sk.hold(&mut s, 0.0, 5.0);
     let ratio = sk.time_to_exhaustion_s(s.capacity, 0.5).unwrap_or(0.0) / 120.25;
-    checks.push(inequality(
-        "Stull & Kearney (1978) Med Sci Sports 10:109",
-        "grip 50 %MVC to exhaustion, 5 s of rest, again",
-        "second endurance / first",
-        0.203,
-        ratio,
-        ratio > 0.0 && ratio < 0.203,
-        "deviation: one recovery time constant cannot return the fast first seconds of recovery; only 0 < ratio < measured is required",
-    ));
+    let condition = "grip 50 %MVC to exhaustion, 5 s of rest, again";
+    checks.push(if matches!(sk.recovery, crate::fatigue::Recovery::Routed { .. }) {
+        // the fast deficit is there for this: the measured figure within 15 %
+        check(SK, condition, "second endurance / first", 0.203, ratio, 0.15)
+    } else {
+        inequality(
+            SK,
+            condition,
+            "second endurance / first",
+            0.203,
+            ratio,
+            ratio > 0.0 && ratio < 0.203,
+            "deviation: one recovery time constant cannot return the fast first seconds of recovery; only 0 < ratio < measured is required",
+        )
+    });
 
     let passed = checks.iter().filter(|c| c.pass).count();
     let total = checks.len();
@@ -266,6 +271,16 @@ pub fn recovery_validation(
             } => format!(
                 "perfusion-limited: R = {rest_per_min} /min at rest, falling to 0 at {:.1} %MVC",
                 100.0 * limit_fmvc
+            ),
+            crate::fatigue::Recovery::Routed {
+                slow_rest_per_min,
+                fast_rest_per_min,
+                limit_fmvc,
+                fast_share_max,
+            } => format!(
+                "two deficits, perfusion-limited: slow R = {slow_rest_per_min} /min and fast R = {fast_rest_per_min} /min at rest, both falling to 0 at {:.1} %MVC; up to {:.1} % of new fatigue to the fast deficit, from 25 %MVC (none) to 50 %MVC (all of it)",
+                100.0 * limit_fmvc,
+                100.0 * fast_share_max
             ),
         },
         endurance,

@@ -33,6 +33,7 @@ fn rate(rec: &Recovery, f: f64) -> f64 {
                 0.0
             }
         }
+        Recovery::Routed { .. } => panic!("this reference integrates the single-rate forms"),
     }
 }
 
@@ -248,6 +249,7 @@ fn check_hold(p: &MaParams, f: f64, dt_s: f64, c0: f64, u0: f64) -> Result<(), S
     let mut s = MaState {
         capacity: c0,
         fatigue_u_min: u0,
+        fast_deficit: 0.0,
     };
     let ok = p.hold(&mut s, f, dt_s);
     let reference = integrate(p.k_per_min, rate(&p.recovery, f), f, c0, dt_s / 60.0);
@@ -407,6 +409,7 @@ fn huge_u_just_below_overflow() {
     let mut s = MaState {
         capacity: 1.0,
         fatigue_u_min: 0.0,
+        fast_deficit: 0.0,
     };
     p.hold(&mut s, f, dt_s);
     let t_min = dt_s / 60.0;
@@ -692,6 +695,7 @@ fn explicit_cycles(p: &MaParams, steps: &[(f64, f64)], c0: f64, n: u64) -> Optio
     let mut s = MaState {
         capacity: c0,
         fatigue_u_min: 0.0,
+        fast_deficit: 0.0,
     };
     for _ in 0..n {
         for &(f, t_min) in steps {
@@ -717,7 +721,15 @@ const CYCLES_REL_TOL: f64 = 1.2e-5;
 
 /// The O(1) total and end capacity against N explicit holds.
 fn check_cycles(p: &MaParams, steps: &[(f64, f64)], c0: f64, n: u64) -> Result<(), TestCaseError> {
-    let out = repeated_cycles(p, &held(steps), c0, n);
+    let out = repeated_cycles(
+        p,
+        &held(steps),
+        &MaState {
+            capacity: c0,
+            ..MaState::FRESH
+        },
+        n,
+    );
     let total_ln = out.u_min.u.ln() + out.u_min.ln_scale;
     match explicit_cycles(p, steps, c0, n) {
         Some((u, c)) if u < 1e290 => {
@@ -787,7 +799,7 @@ proptest! {
         c0 in c0_strategy(), n in 1u64..6,
     ) {
         let p = MaParams::with_recovery(k, rec).unwrap();
-        let out = repeated_cycles(&p, &held(&steps), c0, n);
+        let out = repeated_cycles(&p, &held(&steps), &MaState { capacity: c0, ..MaState::FRESH }, n);
         let (mut c, mut u) = (c0, 0.0);
         for _ in 0..n {
             for &(f, t) in &steps {
@@ -814,8 +826,8 @@ proptest! {
         if !mask.iter().any(|&m| m) {
             mask[0] = true;
         }
-        let got = lowest_end_capacity(&p, &held(&steps), &mask, c0, n);
-        let mut s = MaState { capacity: c0, fatigue_u_min: 0.0 };
+        let got = lowest_end_capacity(&p, &held(&steps), &mask, &MaState { capacity: c0, ..MaState::FRESH }, n);
+        let mut s = MaState { capacity: c0, fatigue_u_min: 0.0, fast_deficit: 0.0 };
         let mut lowest = f64::INFINITY;
         for _ in 0..n {
             for (&(f, t), &m) in steps.iter().zip(&mask) {
@@ -845,7 +857,7 @@ fn hundred_thousand_cycles() {
         .unwrap(),
         MaParams::new(0.05, 0.0).unwrap(),
     ] {
-        let out = repeated_cycles(&p, &held(&steps), 1.0, 100_000);
+        let out = repeated_cycles(&p, &held(&steps), &MaState::FRESH, 100_000);
         let (u, c) = explicit_cycles(&p, &steps, 1.0, 100_000).unwrap();
         let total = out.u_min.u * out.u_min.ln_scale.exp();
         assert!(
@@ -882,7 +894,15 @@ fn paper_model_long_shift_in_scaled_form() {
             two_nl.exp_m1().ln() - (2.0 * l).exp_m1().ln()
         };
         let expected = ((2.0 * l).exp_m1() / (2.0 * k)).ln() - 2.0 * f64::ln(c0) + ln_ratio;
-        let out = repeated_cycles(&p, &held(&steps), c0, n);
+        let out = repeated_cycles(
+            &p,
+            &held(&steps),
+            &MaState {
+                capacity: c0,
+                ..MaState::FRESH
+            },
+            n,
+        );
         let got = out.u_min.u.ln() + out.u_min.ln_scale;
         assert!(
             (got - expected).abs() <= 1e-10 * expected.abs().max(1.0),
@@ -917,7 +937,7 @@ fn mixed_cycle_overflow_is_scaled_not_saturated() {
         },
         HeldStep { f: 0.0, t_min: 1.0 },
     ];
-    let out = repeated_cycles(&p, &steps, 1.0, 1);
+    let out = repeated_cycles(&p, &steps, &MaState::FRESH, 1);
     let got = out.u_min.u.ln() + out.u_min.ln_scale;
     let expected = 1200.0 - 40f64.ln();
     assert!(
@@ -965,7 +985,17 @@ fn cycle_derivatives_match_finite_differences_of_explicit_holds() {
                 },
                 HeldStep { f: c, t_min: 0.1 },
             ];
-            let d = repeated_cycles(&p, &steps, 0.9, 300).u_min.u;
+            let d = repeated_cycles(
+                &p,
+                &steps,
+                &MaState {
+                    capacity: 0.9,
+                    ..MaState::FRESH
+                },
+                300,
+            )
+            .u_min
+            .u;
             let h = 1e-4;
             let (up, u0, um) = (explicit(f + h), explicit(f), explicit(f - h));
             let fd1 = (up - um) / (2.0 * h);
@@ -1017,7 +1047,7 @@ fn slow_transient_cycles_match_explicit_holds() {
     ];
     let mut failures = Vec::new();
     for (p, steps, n) in cases {
-        let out = repeated_cycles(&p, &held(&steps), 1.0, n);
+        let out = repeated_cycles(&p, &held(&steps), &MaState::FRESH, n);
         let (u, _) = explicit_cycles(&p, &steps, 1.0, n).unwrap();
         if (out.u_min.u - u).abs() > CYCLES_REL_TOL * u {
             failures.push(format!(

@@ -169,6 +169,7 @@ fn a1_a3_closed_forms() {
         let mut s = MaState {
             capacity: c0,
             fatigue_u_min: 0.0,
+            fast_deficit: 0.0,
         };
         assert!(p.hold(&mut s, f, t_min * 60.0));
         s
@@ -769,6 +770,7 @@ fn b3a_recovery_at_rest() {
         let mut s = MaState {
             capacity: 0.5,
             fatigue_u_min: 1.0,
+            fast_deficit: 0.0,
         };
         p.hold(&mut s, 0.0, t_min * 60.0);
         assert!(close(s.capacity, 1.0 - 0.5 * (-0.37 * t_min).exp(), 1e-14));
@@ -801,6 +803,7 @@ fn b3_sahlin_ren_endurance_recovery() {
         let mut s = MaState {
             capacity: f,
             fatigue_u_min: 0.0,
+            fast_deficit: 0.0,
         };
         p.hold(&mut s, 0.0, rest_min * 60.0);
         (
@@ -861,6 +864,7 @@ fn b3e_stull_kearney_micro_pause() {
     let mut s = MaState {
         capacity: f,
         fatigue_u_min: 0.0,
+        fast_deficit: 0.0,
     };
     p.hold(&mut s, 0.0, field(row, "rest_s"));
     let ratio = p.time_to_exhaustion_s(s.capacity, f).unwrap() / first_s;

@@ -141,6 +141,7 @@ fn recovery_rate_per_min(r: &Recovery, f: f64) -> f64 {
                 0.0
             }
         }
+        Recovery::Routed { .. } => panic!("this reference integrates the single-rate forms"),
     }
 }
 

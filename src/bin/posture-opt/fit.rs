@@ -3,8 +3,8 @@
 //! parameter file a task uses with `fatigue: {parameters_file: FILE}`.
 
 use crate::common::{Outputs, bad, lib_err, print_json, stdout};
-use posture_opt::fatigue::fit::{self, Fit, FitOptions};
-use posture_opt::fatigue::params::ParameterSets;
+use posture_opt::fatigue::fit::{self, FastDeficit, Fit, FitOptions};
+use posture_opt::fatigue::params::{ParameterSets, RecoverySpec};
 use posture_opt::io::read_text;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -19,13 +19,16 @@ pub struct Args {
     /// Keep the recovery rate at rest at --rest-per-min.
     #[arg(long)]
     no_recovery_fit: bool,
-    /// Recovery rate at rest [1/min] to start from (or keep).
-    #[arg(long, default_value_t = 0.37)]
-    rest_per_min: f64,
-    /// Load (fraction of MVC) from which recovery stops (kept fixed).
-    #[arg(long, default_value_t = 0.085)]
-    limit_fmvc: f64,
-    /// Parameter set whose values the regions not in the data keep.
+    /// Recovery rate at rest [1/min] to start from (or keep); the slow deficit's under a routed
+    /// recovery [default: the base set's, or 0.37].
+    #[arg(long)]
+    rest_per_min: Option<f64>,
+    /// Load (fraction of MVC) from which recovery stops (kept fixed) [default: the base set's, or
+    /// 0.085].
+    #[arg(long)]
+    limit_fmvc: Option<f64>,
+    /// Parameter set whose values the regions not in the data keep, and whose recovery form is
+    /// fitted (routed-2026: two deficits, the fast one kept as the set has it).
     #[arg(long, default_value = "default-2026")]
     base: String,
     /// Write the fitted parameter set (YAML) here.
@@ -37,17 +40,6 @@ pub struct Args {
 
 pub fn run(a: Args) -> anyhow::Result<()> {
     let name = a.data.display().to_string();
-    if !(a.rest_per_min.is_finite()
-        && (0.0..=posture_opt::fatigue::ma::R_MAX_PER_MIN).contains(&a.rest_per_min))
-    {
-        return Err(bad(format!(
-            "--rest-per-min must be 0..{} 1/min",
-            posture_opt::fatigue::ma::R_MAX_PER_MIN
-        )));
-    }
-    if !(a.limit_fmvc.is_finite() && (0.01..=1.0).contains(&a.limit_fmvc)) {
-        return Err(bad("--limit-fmvc must be 0.01..1"));
-    }
     let sets = ParameterSets::shipped();
     let Some(base) = sets.get(&a.base) else {
         return Err(bad(format!(
@@ -56,12 +48,43 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             sets.names().join(", ")
         )));
     };
+    let (base_rest, base_limit) = base.recovery.ranges().map_or((0.37, 0.085), |r| (r.0, r.3));
+    let rest_per_min = a.rest_per_min.unwrap_or(base_rest);
+    let limit_fmvc = a.limit_fmvc.unwrap_or(base_limit);
+    if !(rest_per_min.is_finite()
+        && (0.0..=posture_opt::fatigue::ma::R_MAX_PER_MIN).contains(&rest_per_min))
+    {
+        return Err(bad(format!(
+            "--rest-per-min must be 0..{} 1/min",
+            posture_opt::fatigue::ma::R_MAX_PER_MIN
+        )));
+    }
+    let fast = match base.recovery {
+        RecoverySpec::Routed {
+            fast_rest_per_min,
+            fast_share_max,
+            ..
+        } => Some(FastDeficit {
+            rest_per_min: fast_rest_per_min,
+            share_max: fast_share_max,
+        }),
+        _ => None,
+    };
+    let top = if fast.is_some() {
+        posture_opt::fatigue::ma::ROUTE_FROM_FMVC
+    } else {
+        1.0
+    };
+    if !(limit_fmvc.is_finite() && (0.01..=top).contains(&limit_fmvc)) {
+        return Err(bad(format!("--limit-fmvc must be 0.01..{top}")));
+    }
     Outputs::precheck(&[("--out", &a.out)], &[&a.data])?;
     let text = read_text(&a.data).map_err(lib_err)?;
     let rows = fit::parse_rows(&text, &name).map_err(lib_err)?;
     let opts = FitOptions {
-        rest_per_min: a.rest_per_min,
-        limit_fmvc: a.limit_fmvc,
+        rest_per_min,
+        limit_fmvc,
+        fast,
         fit_rest: if a.recovery_fit {
             Some(true)
         } else if a.no_recovery_fit {
@@ -125,6 +148,13 @@ fn text_summary(f: &Fit) -> String {
             o,
             "recovery at rest kept at {:.4} /min; stops at {:.3} MVC",
             f.rest_per_min.value, f.limit_fmvc
+        );
+    }
+    if let Some(fast) = f.fast {
+        let _ = writeln!(
+            o,
+            "two deficits (routed): the fast one recovers at {:.4} /min and takes up to {:.3} of new fatigue above 25 %MVC, both kept from the base set; the rate above is the slow one's",
+            fast.rest_per_min, fast.share_max
         );
     }
     let _ = writeln!(

@@ -922,6 +922,18 @@ fn recovery_text(r: &Recovery) -> String {
             num(rest_per_min, 3),
             pct(limit_fmvc)
         ),
+        Recovery::Routed {
+            slow_rest_per_min,
+            fast_rest_per_min,
+            limit_fmvc,
+            fast_share_max,
+        } => format!(
+            "two deficits: slow {}/min and fast {}/min at rest, none from {} of strength; up to {} of new fatigue to the fast one above 25 % of strength",
+            num(slow_rest_per_min, 3),
+            num(fast_rest_per_min, 3),
+            pct(limit_fmvc),
+            pct(fast_share_max)
+        ),
     }
 }
 
