@@ -58,7 +58,16 @@ pub struct Row {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Measured {
     EnduranceS(f64),
-    Capacity { t_s: f64, capacity: f64 },
+    Capacity {
+        t_s: f64,
+        capacity: f64,
+    },
+    /// A hold to exhaustion from rest, a rest of `rest_s`, and the same hold again to
+    /// exhaustion: the second endurance over the first (Stull & Kearney 1978's protocol).
+    SecondBout {
+        rest_s: f64,
+        ratio: f64,
+    },
 }
 
 /// Why the data or the fit were refused.
@@ -86,7 +95,7 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
     };
     let headers = rdr.headers().map_err(|e| data_err(e.to_string()))?.clone();
     let col = |name: &str| headers.iter().position(|h| h == name);
-    const KNOWN: [&str; 7] = [
+    const KNOWN: [&str; 9] = [
         "region",
         "load_fmvc",
         "on_s",
@@ -94,6 +103,8 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
         "endurance_s",
         "t_s",
         "capacity",
+        "rest_s",
+        "second_over_first",
     ];
     for h in headers.iter() {
         if !KNOWN.contains(&h) {
@@ -116,6 +127,7 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
         col("t_s"),
         col("capacity"),
     );
+    let (c_rest, c_ratio) = (col("rest_s"), col("second_over_first"));
     let mut rows = Vec::new();
     // newlines before byte `counted_to`, counted once as the reader advances (linear in the file)
     let (mut counted_to, mut newlines) = (0usize, 0usize);
@@ -184,11 +196,34 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
                 )));
             }
         };
+        let second = (get(c_rest, "rest_s")?, get(c_ratio, "second_over_first")?);
         let what = match (
             get(c_end, "endurance_s")?,
             get(c_t, "t_s")?,
             get(c_cap, "capacity")?,
         ) {
+            _ if second != (None, None) => match second {
+                (Some(rest_s), Some(ratio))
+                    if cycle_s.is_none()
+                        && rest_s > 0.0
+                        && rest_s <= MAX_ENDURANCE_S
+                        && ratio > 0.0
+                        && ratio <= 10.0 =>
+                {
+                    Measured::SecondBout { rest_s, ratio }
+                }
+                (Some(_), Some(_)) if cycle_s.is_some() => {
+                    return Err(bad(
+                        "rest_s and second_over_first describe two holds to exhaustion with a rest between: not with on_s and off_s".into(),
+                    ));
+                }
+                (Some(r), Some(q)) => {
+                    return Err(bad(format!(
+                        "rest_s must be in (0, 86400] s and second_over_first in (0, 10], got {r} and {q}"
+                    )));
+                }
+                _ => return Err(bad("rest_s and second_over_first go together".into())),
+            },
             (Some(e), None, None) if e > 0.0 && e <= MAX_ENDURANCE_S => Measured::EnduranceS(e),
             (Some(e), None, None) => {
                 return Err(bad(format!("endurance_s must be in (0, 86400] s, got {e}")));
@@ -204,7 +239,11 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
                     "t_s must be in (0, 86400] s and capacity in (0, 1], got {t} and {c}"
                 )));
             }
-            _ => return Err(bad("give endurance_s, or t_s and capacity".into())),
+            _ => {
+                return Err(bad(
+                    "give endurance_s, or t_s and capacity, or rest_s and second_over_first".into(),
+                ));
+            }
         };
         rows.push(Row {
             line,
@@ -228,32 +267,46 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Row>, FitError> {
 /// `c* + (1 − c*) Aⁿ` with `c* = B/(1 − A)`; exhaustion comes in the first cycle whose start lies
 /// at or below the capacity from which the work period reaches the load.
 pub fn predict(p: &MaParams, row: &Row) -> f64 {
-    if matches!(p.recovery, Recovery::Routed { .. }) {
-        return predict_stepped(p, row);
-    }
     let f = row.load_fmvc;
     let mut s = MaState::FRESH;
+    let routed = matches!(p.recovery, Recovery::Routed { .. });
     match (row.cycle_s, row.what) {
-        (Some((on, off)), what) => {
-            let cy = Cycle::new(p, f, on, off);
-            match what {
-                Measured::EnduranceS(_) => cy.endurance_s(p, f),
-                Measured::Capacity { t_s, .. } => {
-                    let period = on + off;
-                    let n = (t_s / period).floor();
-                    s.capacity = cy.start_capacity(n);
-                    last_cycle(p, &mut s, f, (on, off), t_s - n * period)
-                }
-            }
-        }
+        (_, Measured::SecondBout { rest_s, .. }) => second_over_first(p, f, rest_s),
         (None, Measured::EnduranceS(_)) => p
-            .time_to_exhaustion_s(1.0, f)
-            .map_or(MAX_ENDURANCE_S, |te| te.min(MAX_ENDURANCE_S)),
+            .time_to_exhaustion_within_s(&s, f, MAX_ENDURANCE_S)
+            .unwrap_or(MAX_ENDURANCE_S),
         (None, Measured::Capacity { t_s, .. }) => {
             p.hold(&mut s, f, t_s);
             s.capacity
         }
+        (Some((on, off)), Measured::EnduranceS(_)) if routed => {
+            predict_stepped(p, f, (on, off), None)
+        }
+        (Some((on, off)), Measured::Capacity { t_s, .. }) if routed => {
+            predict_stepped(p, f, (on, off), Some(t_s))
+        }
+        (Some((on, off)), Measured::EnduranceS(_)) => Cycle::new(p, f, on, off).endurance_s(p, f),
+        (Some((on, off)), Measured::Capacity { t_s, .. }) => {
+            let period = on + off;
+            let n = (t_s / period).floor();
+            s.capacity = Cycle::new(p, f, on, off).start_capacity(n);
+            last_cycle(p, &mut s, f, (on, off), t_s - n * period)
+        }
     }
+}
+
+/// Second endurance over the first: `f` held to exhaustion from rest, a rest of `rest_s`, `f` held
+/// to exhaustion again (each bout capped at 24 h).
+fn second_over_first(p: &MaParams, f: f64, rest_s: f64) -> f64 {
+    let mut s = MaState::FRESH;
+    let first = p
+        .time_to_exhaustion_within_s(&s, f, MAX_ENDURANCE_S)
+        .unwrap_or(MAX_ENDURANCE_S);
+    p.hold(&mut s, f, first);
+    p.hold(&mut s, 0.0, rest_s);
+    p.time_to_exhaustion_within_s(&s, f, MAX_ENDURANCE_S)
+        .unwrap_or(MAX_ENDURANCE_S)
+        / first
 }
 
 /// The capacity after the first `left_s` of an on-off cycle from `s`.
@@ -272,24 +325,12 @@ fn last_cycle(p: &MaParams, s: &mut MaState, f: f64, (on, off): (f64, f64), left
 /// [`predict`] for the routed recovery, whose state (capacity and fast deficit) moves by a 2 × 2
 /// map per cycle: the intermittent holds are held cycle by cycle, each step exactly, until the
 /// group gives out, its state stops changing (it never will), or 24 h have passed.
-fn predict_stepped(p: &MaParams, row: &Row) -> f64 {
-    let f = row.load_fmvc;
+fn predict_stepped(p: &MaParams, f: f64, (on, off): (f64, f64), capacity_at_s: Option<f64>) -> f64 {
     let mut s = MaState::FRESH;
-    let Some((on, off)) = row.cycle_s else {
-        return match row.what {
-            Measured::EnduranceS(_) => p
-                .time_to_exhaustion_within_s(&s, f, MAX_ENDURANCE_S)
-                .unwrap_or(MAX_ENDURANCE_S),
-            Measured::Capacity { t_s, .. } => {
-                p.hold(&mut s, f, t_s);
-                s.capacity
-            }
-        };
-    };
     let (work, rest) = (p.prepare(f, on), p.prepare(0.0, off));
     let mut t = 0.0;
-    match row.what {
-        Measured::EnduranceS(_) => loop {
+    match capacity_at_s {
+        None => loop {
             if t >= MAX_ENDURANCE_S {
                 return MAX_ENDURANCE_S;
             }
@@ -304,7 +345,7 @@ fn predict_stepped(p: &MaParams, row: &Row) -> f64 {
                 return MAX_ENDURANCE_S;
             }
         },
-        Measured::Capacity { t_s, .. } => {
+        Some(t_s) => {
             while t + on + off <= t_s {
                 work.advance(&mut s);
                 rest.advance(&mut s);
@@ -415,6 +456,7 @@ fn measured(row: &Row) -> f64 {
     match row.what {
         Measured::EnduranceS(e) => e,
         Measured::Capacity { capacity, .. } => capacity,
+        Measured::SecondBout { ratio, .. } => ratio,
     }
 }
 
@@ -452,24 +494,33 @@ pub struct Fit {
     pub rest_per_min: Estimate,
     pub rest_fitted: bool,
     pub limit_fmvc: f64,
-    /// The routed recovery's fast deficit, kept as given (`None`: the perfusion form).
+    /// The routed recovery's fast deficit, fitted or kept as given (`None`: the perfusion form).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub fast: Option<FastDeficit>,
+    pub fast: Option<FastFit>,
     pub rms_log_error: f64,
     pub iterations: usize,
     pub converged: bool,
     pub method: &'static str,
 }
 
-pub const METHOD: &str = "Levenberg-Marquardt on ln k per region (and ln R_rest when the data hold intermittent work); residuals ln(predicted/measured); 95 % CIs from s²(JᵀJ)⁻¹ with Student's t, exponentiated";
+pub const METHOD: &str = "Levenberg-Marquardt on ln k per region (and ln R_rest when the data hold intermittent work or second bouts; with the routed recovery and second bouts also ln R_fast and logit of the fast share); residuals ln(predicted/measured); 95 % CIs from s²(JᵀJ)⁻¹ with Student's t, transformed back";
 
-/// The fast deficit of the routed recovery ([`Recovery::Routed`]), kept as given while k and the
-/// slow rate are fitted (the rows `fit` reads, continuous and intermittent holds, do not pin
-/// it down: it shows in the first seconds of a rest after a heavy hold).
+/// The fast deficit of the routed recovery ([`Recovery::Routed`]): the start of its fit where
+/// the rows hold second bouts after a rest, else kept as given (continuous and intermittent
+/// holds do not pin it down: it shows in the first seconds of a rest after a heavy hold).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FastDeficit {
     pub rest_per_min: f64,
     pub share_max: f64,
+}
+
+/// The fast deficit of a fit: its rate at rest \[1/min\] and largest share of new fatigue, with
+/// 95 % intervals when fitted (the rows hold second bouts after a rest), else as given.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FastFit {
+    pub rest_per_min: Estimate,
+    pub share_max: Estimate,
+    pub fitted: bool,
 }
 
 /// Fitting options.
@@ -520,12 +571,27 @@ struct Problem<'a> {
     regions: Vec<String>,
     region_of: Vec<usize>,
     fit_rest: bool,
+    /// Fit the fast deficit's rate and share too (routed recovery, second-bout rows present).
+    fit_fast: bool,
     opts: FitOptions,
 }
 
 impl Problem<'_> {
     fn n_params(&self) -> usize {
-        self.regions.len() + usize::from(self.fit_rest)
+        self.regions.len() + usize::from(self.fit_rest) + 2 * usize::from(self.fit_fast)
+    }
+
+    /// The fast deficit at `theta` (`ln R_fast`, `logit φ_max` last).
+    fn fast(&self, theta: &[f64]) -> Option<FastDeficit> {
+        let given = self.opts.fast?;
+        if !self.fit_fast {
+            return Some(given);
+        }
+        let np = self.n_params();
+        Some(FastDeficit {
+            rest_per_min: theta[np - 2].exp().min(super::ma::R_MAX_PER_MIN),
+            share_max: 1.0 / (1.0 + (-theta[np - 1]).exp()),
+        })
     }
 
     fn params(&self, theta: &[f64], g: usize) -> MaParams {
@@ -537,9 +603,13 @@ impl Problem<'_> {
         } else {
             self.opts.rest_per_min
         };
+        let opts = FitOptions {
+            fast: self.fast(theta),
+            ..self.opts
+        };
         MaParams {
             k_per_min: k,
-            recovery: self.opts.recovery(rest),
+            recovery: opts.recovery(rest),
         }
     }
 
@@ -569,12 +639,16 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         })
         .collect();
     let intermittent = rows.iter().any(|r| r.cycle_s.is_some());
-    let fit_rest = opts.fit_rest.unwrap_or(intermittent);
+    let second_bouts = rows
+        .iter()
+        .any(|r| matches!(r.what, Measured::SecondBout { .. }));
+    let fit_rest = opts.fit_rest.unwrap_or(intermittent || second_bouts);
     let pr = Problem {
         rows,
         regions,
         region_of,
         fit_rest,
+        fit_fast: second_bouts && opts.fast.is_some(),
         opts,
     };
     let np = pr.n_params();
@@ -623,6 +697,7 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
                 Measured::Capacity { t_s, capacity } => {
                     (-capacity.ln() / (r.load_fmvc * t_s / 60.0)).max(K_MIN_PER_MIN)
                 }
+                Measured::SecondBout { .. } => f64::NAN,
             })
             .filter(|k| k.is_finite() && *k > 0.0)
             .collect();
@@ -634,7 +709,12 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         theta[g] = k0.clamp(K_MIN_PER_MIN.ln(), K_MAX_PER_MIN.ln());
     }
     if fit_rest {
-        theta[np - 1] = opts.rest_per_min.max(1e-3).ln();
+        theta[pr.regions.len()] = opts.rest_per_min.max(1e-3).ln();
+    }
+    if let (true, Some(fast)) = (pr.fit_fast, opts.fast) {
+        let share = fast.share_max.clamp(0.01, 0.99);
+        theta[np - 2] = fast.rest_per_min.max(1e-3).ln();
+        theta[np - 1] = (share / (1.0 - share)).ln();
     }
     let mut r = vec![0.0; n];
     let mut r2 = vec![0.0; n];
@@ -664,7 +744,9 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
     jacobian(&theta, &mut jac, &mut r2, 0.1);
     for j in 0..np {
         if jac.column(j).amax() < 1e-9 {
-            let what = if j < pr.regions.len() {
+            let what = if j >= pr.regions.len() + usize::from(fit_rest) {
+                "the predictions do not depend on the fast deficit's rate or share: the second-bout rows cannot identify them".to_string()
+            } else if j < pr.regions.len() {
                 format!(
                     "the predictions for region '{}' do not depend on its k (its rows are all at loads the model says give out at once, such as 100 %MVC): the data cannot identify k; give measurements at loads below 100 %MVC",
                     pr.regions[j]
@@ -764,7 +846,7 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         }
     };
     let rest_per_min = if fit_rest {
-        theta[np - 1].exp()
+        theta[pr.regions.len()].exp()
     } else {
         opts.rest_per_min
     };
@@ -797,7 +879,7 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         parameters: np,
         regions,
         rest_per_min: if fit_rest {
-            est(np - 1)
+            est(pr.regions.len())
         } else {
             Estimate {
                 value: opts.rest_per_min,
@@ -807,7 +889,36 @@ pub fn fit(rows: &[Row], source: &str, opts: FitOptions) -> Result<Fit, FitError
         },
         rest_fitted: fit_rest,
         limit_fmvc: opts.limit_fmvc,
-        fast: opts.fast,
+        fast: pr.fast(&theta).map(|f| {
+            if pr.fit_fast {
+                let j = np - 1;
+                let se = cov
+                    .as_ref()
+                    .map_or(f64::INFINITY, |c| (s2 * c[(j, j)].max(0.0)).sqrt());
+                let logistic = |x: f64| 1.0 / (1.0 + (-x).exp());
+                let v = theta[j];
+                FastFit {
+                    rest_per_min: est(np - 2),
+                    share_max: Estimate {
+                        value: f.share_max,
+                        low: logistic(v - t * se).min(f.share_max),
+                        high: logistic(v + t * se).max(f.share_max),
+                    },
+                    fitted: true,
+                }
+            } else {
+                let fixed = |v: f64| Estimate {
+                    value: v,
+                    low: v,
+                    high: v,
+                };
+                FastFit {
+                    rest_per_min: fixed(f.rest_per_min),
+                    share_max: fixed(f.share_max),
+                    fitted: false,
+                }
+            }
+        }),
         rms_log_error: (cost / n as f64).sqrt(),
         iterations,
         converged,
@@ -873,8 +984,8 @@ impl Fit {
                     limit_fmvc,
                     limit_low,
                     limit_high,
-                    fast_rest_per_min: fast.rest_per_min.max(rh),
-                    fast_share_max: fast.share_max,
+                    fast_rest_per_min: fast.rest_per_min.value.max(rh),
+                    fast_share_max: fast.share_max.value,
                 },
             },
             recovery_source: base.recovery_source.clone(),

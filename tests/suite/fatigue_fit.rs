@@ -95,6 +95,7 @@ fn predictions_at_the_true_parameters_match_the_integration() {
             let measured = match row.what {
                 Measured::EnduranceS(e) => e,
                 Measured::Capacity { capacity, .. } => capacity,
+                Measured::SecondBout { ratio, .. } => ratio,
             };
             let predicted = predict(&true_params(&t, &row.region), &row);
             assert!(
@@ -259,6 +260,10 @@ fn confidence_intervals_have_their_coverage() {
                         t_s,
                         capacity: (capacity * m).min(1.0),
                     },
+                    Measured::SecondBout { rest_s, ratio } => Measured::SecondBout {
+                        rest_s,
+                        ratio: ratio * m,
+                    },
                 };
                 Row { what, ..r.clone() }
             })
@@ -384,6 +389,23 @@ fn bad_rows_are_refused_with_their_line() {
     // a misspelt region gets a suggestion
     let (_, problem) = row_error(&format!("{HEADER}\nsholder,0.5,,,120,,\n"));
     assert!(problem.contains("shoulder"), "{problem}");
+    // second bouts after a rest: both columns, a sustained hold, values in range
+    let wide = format!("{HEADER},rest_s,second_over_first");
+    let good = "grip,0.5,,,,,,5,0.2";
+    for (bad, expect) in [
+        ("grip,0.5,,,,,,5,", "go together"),
+        ("grip,0.5,,,,,,,0.2", "go together"),
+        ("grip,0.5,10,5,,,,5,0.2", "not with on_s and off_s"),
+        ("grip,0.5,,,,,,0,0.2", "rest_s must be"),
+        ("grip,0.5,,,,,,5,11", "second_over_first in (0, 10]"),
+    ] {
+        let (line, problem) = row_error(&format!("{wide}\n{good}\n{bad}\n"));
+        assert_eq!(line, 3, "{bad}: {problem}");
+        assert!(
+            problem.contains(expect),
+            "{bad}: '{problem}' lacks '{expect}'"
+        );
+    }
 }
 
 /// Line numbers count the file's lines, blank lines included.
@@ -503,6 +525,7 @@ fn routed_predictions_at_the_true_parameters_match_the_integration() {
         let measured = match row.what {
             Measured::EnduranceS(e) => e,
             Measured::Capacity { capacity, .. } => capacity,
+            Measured::SecondBout { ratio, .. } => ratio,
         };
         let predicted = predict(&routed_params(&t, &row.region), &row);
         assert!(
@@ -513,27 +536,26 @@ fn routed_predictions_at_the_true_parameters_match_the_integration() {
     }
 }
 
-/// `fit` with the routed form (the fast deficit given, as `--base routed-2026` gives it) recovers
-/// k of every region and the slow rate from noise-free data, and writes a routed parameter set.
+/// `fit` with the routed form (as `--base routed-2026` gives it) recovers k of every region, the
+/// slow rate and — from the second bouts after a rest — the fast deficit's rate and share, from
+/// noise-free data, starting far from them; without the second-bout rows it keeps the fast
+/// deficit as given; either way it writes a routed parameter set a task can read.
 #[test]
 fn routed_fit_gives_the_known_parameters() {
     let t = routed_truth();
     let rows = rows("synthetic_routed_exact.csv");
-    let f = fit(
-        &rows,
-        "synthetic routed",
-        FitOptions {
-            limit_fmvc: t.limit,
-            fit_rest: Some(true),
-            fast: Some(posture_opt::fatigue::fit::FastDeficit {
-                rest_per_min: t.fast,
-                share_max: t.share,
-            }),
-            ..FitOptions::default()
-        },
-    )
-    .unwrap();
+    let opts = FitOptions {
+        limit_fmvc: t.limit,
+        fit_rest: Some(true),
+        fast: Some(posture_opt::fatigue::fit::FastDeficit {
+            rest_per_min: 4.0,
+            share_max: 0.1,
+        }),
+        ..FitOptions::default()
+    };
+    let f = fit(&rows, "synthetic routed", opts).unwrap();
     assert!(f.converged, "{f:?}");
+    assert_eq!(f.parameters, t.k.len() + 3);
     for (region, k) in &t.k {
         let e = k_of(&f, region);
         assert!(
@@ -548,18 +570,58 @@ fn routed_fit_gives_the_known_parameters() {
         f.rest_per_min.value,
         t.slow
     );
+    let fast = f.fast.unwrap();
+    assert!(fast.fitted);
+    assert!(
+        (fast.rest_per_min.value / t.fast - 1.0).abs() < 1e-3,
+        "R_fast {:?} vs {}",
+        fast.rest_per_min,
+        t.fast
+    );
+    assert!(
+        (fast.share_max.value / t.share - 1.0).abs() < 1e-3,
+        "share {:?} vs {}",
+        fast.share_max,
+        t.share
+    );
     let sets = ParameterSets::shipped();
     let set = f.parameter_set(sets.get("routed-2026").unwrap());
     assert_eq!(
         set.recovery.recovery(),
         Recovery::Routed {
             slow_rest_per_min: f.rest_per_min.value,
-            fast_rest_per_min: t.fast.max(f.rest_per_min.high),
+            fast_rest_per_min: fast.rest_per_min.value.max(f.rest_per_min.high),
             limit_fmvc: t.limit,
-            fast_share_max: t.share,
+            fast_share_max: fast.share_max.value,
         }
     );
     // the set reads back as a task's parameter file would
     let text = serde_saphyr::to_string(&set).unwrap();
     posture_opt::fatigue::params::ParameterSet::from_yaml_str(&text, "fitted.yaml").unwrap();
+    // without second bouts the fast deficit is kept as given
+    let without: Vec<Row> = rows
+        .iter()
+        .filter(|r| !matches!(r.what, Measured::SecondBout { .. }))
+        .cloned()
+        .collect();
+    let given = posture_opt::fatigue::fit::FastDeficit {
+        rest_per_min: t.fast,
+        share_max: t.share,
+    };
+    let f = fit(
+        &without,
+        "synthetic routed",
+        FitOptions {
+            fast: Some(given),
+            ..opts
+        },
+    )
+    .unwrap();
+    let fast = f.fast.unwrap();
+    assert!(!fast.fitted);
+    assert_eq!(
+        (fast.rest_per_min.value, fast.share_max.value),
+        (t.fast, t.share)
+    );
+    assert!((f.rest_per_min.value / t.slow - 1.0).abs() < 1e-4);
 }

@@ -11,9 +11,11 @@ use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Measurements (CSV: region, load_fmvc, on_s, off_s, endurance_s | t_s, capacity).
+    /// Measurements (CSV: region, load_fmvc, on_s, off_s, endurance_s | t_s, capacity | rest_s,
+    /// second_over_first).
     data: PathBuf,
-    /// Fit the recovery rate at rest too (default: when the data hold intermittent holds).
+    /// Fit the recovery rate at rest too (default: when the data hold intermittent holds or
+    /// second bouts).
     #[arg(long, conflicts_with = "no_recovery_fit")]
     recovery_fit: bool,
     /// Keep the recovery rate at rest at --rest-per-min.
@@ -151,11 +153,24 @@ fn text_summary(f: &Fit) -> String {
         );
     }
     if let Some(fast) = f.fast {
-        let _ = writeln!(
-            o,
-            "two deficits (routed): the fast one recovers at {:.4} /min and takes up to {:.3} of new fatigue above 25 %MVC, both kept from the base set; the rate above is the slow one's",
-            fast.rest_per_min, fast.share_max
-        );
+        if fast.fitted {
+            let _ = writeln!(
+                o,
+                "two deficits (routed): the fast one recovers at {:.4} /min (95 % CI {:.4} – {:.4}) and takes up to {:.3} ({:.3} – {:.3}) of new fatigue above 25 %MVC; the rate above is the slow one's",
+                fast.rest_per_min.value,
+                fast.rest_per_min.low,
+                fast.rest_per_min.high,
+                fast.share_max.value,
+                fast.share_max.low,
+                fast.share_max.high
+            );
+        } else {
+            let _ = writeln!(
+                o,
+                "two deficits (routed): the fast one recovers at {:.4} /min and takes up to {:.3} of new fatigue above 25 %MVC, both kept from the base set (no rows with rest_s and second_over_first); the rate above is the slow one's",
+                fast.rest_per_min.value, fast.share_max.value
+            );
+        }
     }
     let _ = writeln!(
         o,

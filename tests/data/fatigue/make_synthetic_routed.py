@@ -12,8 +12,9 @@ in docs/fatigue-parameters.md ("A fast and a slow component"), with KNOWN parame
     for off_s, repeat, from rest; capacity rows: c at t_s from the start of the same pattern.
 
 Known values (TRUE below): k per region and R_slow are what `posture-opt fit --base routed-2026`
-fits; R_fast, phi_max and f_lim are kept as given. The design is make_synthetic.py's
-DESIGN_SMOOTH plus heavy intermittent capacity rows, where the fast deficit matters.
+fits, R_fast and phi_max too where rows give a second bout after a rest; f_lim is kept as given.
+The design is make_synthetic.py's DESIGN_SMOOTH plus heavy intermittent capacity rows, where the
+fast deficit matters, and second bouts after rests of 5 s to 2 min.
 
 Writes next to this script: synthetic_routed_exact.csv, synthetic_routed_truth.json.
 Run from the repository root:  python3 tests/data/fatigue/make_synthetic_routed.py  (~1 min)
@@ -98,7 +99,16 @@ def capacity_at(f, k, t_s, on_s=None, off_s=None):
     return 1.0 - y[0] - y[1]
 
 
-# (region, load, on_s, off_s, kind, t_s); kind: "E" endurance, "C" capacity at t_s
+def second_over_first(f, k, rest_s):
+    """f held to exhaustion from rest, rest_s of rest, f held to exhaustion again: second / first."""
+    y, first = hold((0.0, 0.0), f, k, MAX_S, stop=True)
+    y, _ = hold(y, 0.0, k, rest_s)
+    _, second = hold(y, f, k, MAX_S, stop=True)
+    return second / first
+
+
+# (region, load, on_s, off_s, kind, t_s); kind: "E" endurance, "C" capacity at t_s, "S" second
+# bout after a rest of t_s (Stull & Kearney's protocol: what identifies the fast deficit)
 DESIGN = [
     ("shoulder", 0.20, None, None, "E", None), ("shoulder", 0.35, None, None, "E", None),
     ("shoulder", 0.50, None, None, "E", None), ("shoulder", 0.70, None, None, "E", None),
@@ -113,9 +123,13 @@ DESIGN = [
     ("knee", 0.66, None, None, "E", None), ("knee", 0.05, None, None, "C", 3600.0),
     ("knee", 0.04, 120.0, 30.0, "C", 3600.0), ("knee", 0.45, 15.0, 5.0, "C", 150.0),
     ("knee", 0.66, 20.0, 3.0, "C", 70.0),
+    ("grip", 0.50, None, None, "S", 5.0), ("grip", 0.50, None, None, "S", 30.0),
+    ("grip", 0.50, None, None, "S", 120.0), ("knee", 0.66, None, None, "S", 72.0),
+    ("shoulder", 0.60, None, None, "S", 10.0), ("shoulder", 0.40, None, None, "S", 60.0),
 ]
 
-HEADER = ["region", "load_fmvc", "on_s", "off_s", "endurance_s", "t_s", "capacity"]
+HEADER = ["region", "load_fmvc", "on_s", "off_s", "endurance_s", "t_s", "capacity", "rest_s",
+          "second_over_first"]
 
 
 def fmt(x):
@@ -127,9 +141,11 @@ def main():
     for g, f, on, off, kind, t in DESIGN:
         k = TRUE["k_per_min"][g]
         if kind == "E":
-            rows.append([g, f, on, off, endurance_s(f, k, on, off), None, None])
+            rows.append([g, f, on, off, endurance_s(f, k, on, off), None, None, None, None])
+        elif kind == "S":
+            rows.append([g, f, on, off, None, None, None, t, second_over_first(f, k, t)])
         else:
-            rows.append([g, f, on, off, None, t, capacity_at(f, k, t, on, off)])
+            rows.append([g, f, on, off, None, t, capacity_at(f, k, t, on, off), None, None])
     with open(os.path.join(HERE, "synthetic_routed_exact.csv"), "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
         w.writerow(HEADER)
