@@ -258,8 +258,9 @@ fn fast_refill<T: Real>(lambda: T, r_f: T, tau: f64) -> T {
 /// fast deficit `d0` at the step's start, `d(τ) = d0 e^{−R_f τ}` and the capacity is the
 /// single-rate model's plus `(R_f − R_s) d0 E(τ)`; U = ∫ f/c² has no closed form along two
 /// exponentials and is summed by Gauss–Legendre (8 points on panels at most 2 wide in `R_f τ`
-/// and `λτ`) over `[0, t_q]`, where `R_f t_q ≤ 40`; beyond `t_q` the fast deficit is below
-/// `e^{−40}` of itself and the single-rate closed form takes over.
+/// and `λτ`, graded near the start where the capacity rises steeply from far below) over
+/// `[0, t_q]`, where `R_f t_q ≤ 40`; beyond `t_q` the fast deficit is below `e^{−40}` of itself
+/// and the single-rate closed form takes over.
 #[derive(Debug, Clone, Copy)]
 struct Fast<T> {
     r_f: T,
@@ -364,15 +365,36 @@ impl<T: Real> Prepared<T> {
                 let du = if one.f.val() == 0.0 {
                     T::cst(0.0)
                 } else {
-                    let h = fs.t_q / fs.panels as f64;
+                    // Panels: a capacity that starts far below where it is heading rises
+                    // steeply, over `τ_c = c0 / |dc/dτ(0)|`, so the first panels grade from
+                    // τ_c, doubling (1/c² has its pole at least one panel width away from each
+                    // of them), up to the uniform width
+                    let uniform = fs.t_q / fs.panels as f64;
+                    let slope = (one.lambda * (one.a - c0) + fs.g * d0).val().abs();
+                    let tau_c = if slope > 0.0 {
+                        c0.val() / slope
+                    } else {
+                        f64::INFINITY
+                    };
                     let mut acc = T::cst(0.0);
-                    for panel in 0..fs.panels {
-                        let mid = h * (panel as f64 + 0.5);
+                    let mut start = 0.0;
+                    while start < fs.t_q {
+                        let width = if tau_c < uniform {
+                            start.max(tau_c).min(uniform)
+                        } else {
+                            uniform
+                        }
+                        .min(fs.t_q - start);
+                        let mid = start + 0.5 * width;
                         for &(node, w) in &GL8 {
                             for sgn in [-1.0, 1.0] {
-                                let c = c_at(mid + 0.5 * h * node * sgn);
-                                acc = acc + T::cst(0.5 * h * w) / (c * c);
+                                let c = c_at(mid + 0.5 * width * node * sgn);
+                                acc = acc + T::cst(0.5 * width * w) / (c * c);
                             }
+                        }
+                        start += width;
+                        if fs.t_q - start <= 1e-12 * fs.t_q {
+                            break;
                         }
                     }
                     let mut du = one.f * acc;

@@ -930,7 +930,7 @@ fn recovery_text(r: &Recovery) -> String {
         } => format!(
             "two deficits: slow {}/min and fast {}/min at rest, none from {} of strength; up to {} of new fatigue to the fast one above 25 % of strength",
             num(slow_rest_per_min, 3),
-            num(fast_rest_per_min, 3),
+            num(fast_rest_per_min, 1),
             pct(limit_fmvc),
             pct(fast_share_max)
         ),
