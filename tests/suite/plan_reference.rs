@@ -618,39 +618,71 @@ fn zoned_fatigue_only_plan_against_the_reference() {
                 .expect("a pass"),
             "summary.passes",
         );
-        let mut optima: Vec<f64> = r.json["joint_local_optima"]
+        // the sustainable whole-plan local optima: (objective, total U)
+        let mut sustainable: Vec<(f64, f64)> = r.json["joint_local_optima"]
             .as_array()
             .expect("joint_local_optima")
             .iter()
             .filter(|d| d["exhausted"] == Value::Bool(false))
-            .map(|d| num(&d["objective"], "objective"))
+            .map(|d| {
+                (
+                    num(&d["objective"], "objective"),
+                    num(&d["total_u_min"], "total_u_min"),
+                )
+            })
             .collect();
-        optima.sort_by(f64::total_cmp);
+        sustainable.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let optima: Vec<f64> = sustainable.iter().map(|o| o.0).collect();
         let Some(med) = median(&optima) else {
             // a reference run that found no sustainable whole-plan optimum (its joint stage
-            // had no time, or every optimum exhausts a group) has no best to be within 1 % of
-            println!(
-                "{:<16} not compared: the reference has no whole-plan local optimum that exhausts \
-                 no muscle group (its best, {:.6}, exhausts {})",
-                r.key,
-                num(&r.json["best_objective"], "best_objective"),
-                r.json["exhausted_half_joints"]
-            );
-            uncompared.push(r.key.clone());
+            // had no time, or every optimum exhausts a group) has no sustainable best to be
+            // within 1 % of; a plan of ours that exhausts no group and is within 1 % of the
+            // reference's best all the same is within 1 % of a best that had more room (one
+            // our capacity rows refuse), which the comparison counts
+            let best = num(&r.json["best_objective"], "best_objective");
+            let sustainable = s["exhaustion"].is_null();
+            if sustainable && ours - best <= within_one_per_cent {
+                println!(
+                    "{:<16} posture-opt objective {ours:.6} (U {:.3} min, no group exhausted) | \
+                     reference best {best:.6} (U {:.3}), which exhausts {}; no sustainable \
+                     whole-plan local optimum | ours - best {:.4}",
+                    r.key,
+                    num(&s["total_u"], "total_u"),
+                    r.best(),
+                    r.json["exhausted_half_joints"],
+                    ours - best
+                );
+            } else {
+                println!(
+                    "{:<16} not compared: the reference has no whole-plan local optimum that \
+                     exhausts no muscle group (its best, {best:.6}, exhausts {}; ours {ours:.6})",
+                    r.key, r.json["exhausted_half_joints"]
+                );
+                uncompared.push(r.key.clone());
+            }
             continue;
         };
         // the reference's best, or its best sustainable optimum where its best exhausts a group
-        let best = if r.json["exhausted"] == Value::Bool(false) {
-            num(&r.json["best_objective"], "best_objective")
+        let (best, best_u, which) = if r.json["exhausted"] == Value::Bool(false) {
+            (
+                num(&r.json["best_objective"], "best_objective"),
+                r.best(),
+                "best",
+            )
         } else {
-            optima[0]
+            (
+                sustainable[0].0,
+                sustainable[0].1,
+                "best sustainable optimum",
+            )
         };
         println!(
-            "{:<16} posture-opt objective {ours:.6} (U {:.3} min) | reference best {best:.6} (U {:.3}), \
-             median of {} sustainable whole-plan local optima {med:.6} | ours - best {:.4}",
+            "{:<16} posture-opt objective {ours:.6} (U {:.3} min) | reference {which} {best:.6} \
+             (U {best_u:.3}; its best {:.6}), median of {} sustainable whole-plan local optima \
+             {med:.6} | ours - best {:.4}",
             r.key,
             num(&s["total_u"], "total_u"),
-            r.best(),
+            num(&r.json["best_objective"], "best_objective"),
             optima.len(),
             ours - best
         );
@@ -674,7 +706,14 @@ fn zoned_fatigue_only_plan_against_the_reference() {
         }
     }
     assert!(bad.is_empty(), "\n  {}", bad.join("\n  "));
-    for key in ["shelf", "bench_assembly"] {
+    // two shipped tasks and the two written for the reference alone (inputs/*.yaml) must be
+    // compared: four of the five tasks the issue asks for, two of them new
+    for key in [
+        "shelf",
+        "bench_assembly",
+        "bin_to_fixture",
+        "hold_and_place",
+    ] {
         assert!(
             refs.iter().any(|r| r.key == key) && !uncompared.iter().any(|k| k == key),
             "{key}: compared with the reference"

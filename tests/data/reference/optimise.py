@@ -44,7 +44,8 @@ GROUPS = {
 
 class Search:
     def __init__(self, key, budget, log=print, n_random=16, resume=None, seed_offset=0,
-                 zones=False, checkpoint=None, checkpoint_every=100.0, rerun_joint=False):
+                 zones=False, checkpoint=None, checkpoint_every=100.0, rerun_joint=False,
+                 joint_fraction=0.2, families=None):
         self.key = key
         self.t = M.load_task(key)
         self.zones = zones
@@ -67,6 +68,10 @@ class Search:
         self.seed_offset = seed_offset
         self.prev_runtime = 0.0
         self.rerun_joint = rerun_joint
+        # stage 1's share of the budget and its seed families, in order (default: all of
+        # search.FAMILIES in their order, 20 %)
+        self.joint_fraction = joint_fraction
+        self.families = list(families) if families else list(S.FAMILIES)
 
     # --- helpers --------------------------------------------------------------------------------
     def elapsed(self):
@@ -207,9 +212,28 @@ class Search:
         return out
 
     # --- stages ---------------------------------------------------------------------------------
+    def seed_posture(self, gi, q_t):
+        """A template brought onto the constraints. Without zones: the IK projection (hands and
+        feet only). With zones (run 7): the zone-respecting feasibility restoration
+        S.restore_zones from the template (hands, feet, clearance incl. held boxes, balance,
+        gaze, zone excesses, closeness to the template), unless the IK projection is already
+        feasible and within the zones; the IK projection alone put hold_and_place's seeds
+        100-150 deg stooped, inside the table and off balance (run 6)."""
+        pm = self.full.pm[gi]
+        q_ik = S.ik_project(pm, q_t)
+        if not self.zones:
+            return q_ik
+        if self.feasible_q(gi, q_ik) and np.max(self.pr.zone_slacks(gi, q_ik)) <= 1e-6:
+            return q_ik
+        try:
+            return S.restore_zones(pm, q_t)
+        except Exception as ex:  # a failed restoration falls back to the IK projection
+            self.log(f"   restore_zones failed {ex!r}")
+            return q_ik
+
     def seeds_for(self, fam, rs):
         rng = np.random.default_rng(rs) if rs is not None else None
-        return [S.ik_project(self.full.pm[gi], S.template(self.b, self.t.rest_q, fam, rng))
+        return [self.seed_posture(gi, S.template(self.b, self.t.rest_q, fam, rng))
                 for gi in range(self.t.P)]
 
     def run(self):
@@ -219,8 +243,8 @@ class Search:
         if self.resume:
             self.load_previous(self.resume)
         # 1. joint multi-start (on --resume: the seed families not started before)
-        for fam in S.FAMILIES:
-            if self.elapsed() > 0.2 * B:
+        for fam in self.families:
+            if self.elapsed() > self.joint_fraction * B:
                 break
             if f"joint:{fam}" in self.starts:
                 continue
@@ -260,7 +284,7 @@ class Search:
                     span = min(self.b.upper[i] - self.b.lower[i], 2.0)
                     q[i] += rng.normal(0, scale) * span
                 q = np.clip(q, self.b.lower, self.b.upper)
-                q = S.ik_project(self.full.pm[gi], q)
+                q = self.seed_posture(gi, q)
                 self.phase_solve(gi, q, f"hop{hop}:{grp}", paths=("ipopt",) if hop % 2 else ("slsqp",),
                                  parent=self.best["origin"][gi])
                 hop += 1
@@ -299,7 +323,12 @@ class Search:
         while improved:
             improved = False
             for gi in range(self.t.P):
+                # a phase with an empty pool, or none of whose pool postures is feasible, has
+                # nothing to swap in (run 6: min() of an empty list crashed the final pool swap)
                 vals = [(self.value_with(gi, q), j) for j, (q, _) in enumerate(self.phase_pool[gi])]
+                vals = [(u, j) for u, j in vals if np.isfinite(u)]
+                if not vals:
+                    continue
                 u, j = min(vals)
                 if u < self.best["U"] - 1e-9 * abs(self.best["U"]):
                     q, lab = self.phase_pool[gi][j]
@@ -517,6 +546,11 @@ def main():
                     help="with --resume: drop the previous run's whole-plan local optima (relabel "
                          "their starts and pool postures prev:joint:<family>) and solve every "
                          "joint seed family again (for a resume after the statement changed)")
+    ap.add_argument("--joint-fraction", type=float, default=0.2,
+                    help="share of the budget stage 1 (the joint multi-start) may use (default 0.2)")
+    ap.add_argument("--families", default=None,
+                    help="comma-separated seed families for stage 1, in this order (default: all "
+                         "of search.FAMILIES in their order); families started before are skipped")
     ap.add_argument("--pool-swap-only", action="store_true",
                     help="only apply the final pool swap (Search.pool_swap) to an existing result "
                          "and its .pool.json (--out or results/TASK.json), then rewrite both")
@@ -558,7 +592,8 @@ def main():
 
     s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset,
                zones=a.zones, checkpoint=checkpoint, checkpoint_every=a.checkpoint_every,
-               rerun_joint=a.rerun_joint)
+               rerun_joint=a.rerun_joint, joint_fraction=a.joint_fraction,
+               families=None if not a.families else [f.strip() for f in a.families.split(",")])
     S.PROGRESS_HOOK = s.maybe_checkpoint
     if a.pool_swap_only:
         with open(out) as fh:

@@ -387,3 +387,64 @@ def restore(pm, q0, max_nfev=200, push=2e-3):
     pm.active = np.arange(pm.n_dist)
     pm._cache_key = None
     return q
+
+
+def restore_zones(pm, q_t, w_zone=0.5, w_reg=0.02, push=2e-3, max_nfev=300):
+    """Zone-respecting feasibility restoration of a seed (zoned search, run 7): scipy
+    least_squares (trf, joint bounds) of
+      10 x the hand/feet errors, the hinge violations of every clearance pair (obstacles, self,
+      held boxes) and of the balance margin (each pushed 2 mm inside), the gaze hinge,
+      w_zone x the zone rows' excesses (g_i + 1e-3 rad)_+ and w_reg x (q - q_t),
+    started from the TEMPLATE q_t itself; then the SLSQP projection (project) onto the hard
+    constraints. Why: ik_project alone (minimum-weighted-norm steps of the hands and feet only)
+    lands, for a task whose targets are far from the hanging hands (hold_and_place), on postures
+    stooped 100-150 deg with the arms overhead, inside the table, off balance and looking away;
+    IPOPT's restoration from there ignores the zones and stalls on absurd local solutions. Here
+    the zones and the gaze pull the restored seed upright and the clearance rows out of the
+    obstacles before the real NLP starts."""
+    from scipy.optimize import least_squares
+
+    b, t, pr = pm.body, pm.task, pm.prob
+    gi = pm.gi
+    L = pr.zone_limits[gi]
+    pts = pr.gaze_points[gi] if pr.zones else []
+    pm.active = np.arange(pm.n_dist)
+    pm._cache_key = None
+
+    def res(q):
+        e = pm.evaluate(q, False)
+        kin = pm.kin_eq(q)[0]
+        d = e["dist"] - t.clearance - push
+        bal = pm.edges_n @ e["p"] - pm.edges_o - t.balance_margin - push
+        g = pr.zm.rows(q, L) + 1e-3
+        out = [10 * kin, np.minimum(d, 0), np.minimum(bal, 0), w_zone * np.maximum(g, 0),
+               w_reg * (q - q_t)]
+        if pts:
+            out.append(np.minimum(pr.zm.gaze_values(q, pts) - push, 0))
+        return np.concatenate(out)
+
+    def jac(q):
+        e = pm.evaluate(q, True)
+        kin, J = pm.kin_eq(q)
+        d = e["dist"] - t.clearance - push
+        bal = pm.edges_n @ e["p"] - pm.edges_o - t.balance_margin - push
+        g, Jg = pr.zm.rows_jac(q, L)
+        g = g + 1e-3
+        out = [10 * J, e["dist_J"] * (d < 0)[:, None], (pm.edges_n @ e["dp"]) * (bal < 0)[:, None],
+               w_zone * Jg * (g > 0)[:, None], w_reg * np.eye(b.nq)]
+        if pts:
+            gv, gJ = pr.zm.gaze_jac(q, pts)
+            out.append(gJ * (gv - push < 0)[:, None])
+        return np.vstack(out)
+
+    lo, hi = b.lower, b.upper
+    x0 = np.clip(q_t, lo + 1e-9, hi - 1e-9)
+    r = least_squares(res, x0, jac=jac, bounds=(lo, hi), method="trf", max_nfev=max_nfev,
+                      xtol=1e-12, ftol=1e-12, gtol=1e-12)
+    q = np.clip(r.x, lo, hi)
+    pm.active = np.arange(pm.n_dist)
+    pm._cache_key = None
+    q = project(pm, q, maxiter=150)
+    pm.active = np.arange(pm.n_dist)
+    pm._cache_key = None
+    return q
