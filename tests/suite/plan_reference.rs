@@ -417,7 +417,8 @@ fn reference_best_plans_evaluate_to_the_reference_totals() {
 fn fatigue_only_plan_is_no_worse_than_the_reference_median() {
     // The median is taken over the reference's whole-plan local optima that exhaust no muscle
     // group: a plan whose capacity falls to its load cannot be carried out, and posture-opt's
-    // planner keeps capacity above load (a constraint docs/optimisation-problem.md does not state).
+    // planner keeps capacity above load (a constraint docs/optimisation-problem.md states since
+    // 2026-12-08; the reference, written before, does not have it).
     // A task whose reference local optima all exhaust (pallet) is reported, not compared.
     let refs: Vec<(Reference, f64)> = references()
         .into_iter()
