@@ -45,11 +45,14 @@ GROUPS = {
 class Search:
     def __init__(self, key, budget, log=print, n_random=16, resume=None, seed_offset=0,
                  zones=False, checkpoint=None, checkpoint_every=100.0, rerun_joint=False,
-                 joint_fraction=0.2, families=None):
+                 joint_fraction=0.2, families=None, capacity=False):
         self.key = key
         self.t = M.load_task(key)
         self.zones = zones
         self.pr = M.Problem(self.t, zones=zones)
+        # statement section 4, "capacity (no muscle group gives out)": rows in every NLP
+        self.capacity = bool(capacity)
+        self.pr.capacity = self.capacity
         self.checkpoint_fn = checkpoint
         self.checkpoint_every = checkpoint_every
         self.last_checkpoint = time.time()
@@ -88,6 +91,20 @@ class Search:
         U, c, tex = self.pr.fatigue(fs)
         return float(U.sum())
 
+    def capacity_slack(self, qs):
+        """Smallest capacity row (statement section 4, "capacity") at the plan's true loads;
+        +inf without --capacity."""
+        if not self.capacity:
+            return np.inf
+        fs = [self.full.pm[gi].loads_from_q(q) for gi, q in enumerate(qs)]
+        v = self.full.capacity_rows(np.concatenate(list(qs) + list(fs)
+                                                   + ([np.zeros(self.full.nz * self.t.P)]
+                                                      if self.full.zones else [])))
+        return float(v.min()) if len(v) else np.inf
+
+    def capacity_ok(self, qs):
+        return self.capacity_slack(qs) >= -1e-7
+
     def maybe_checkpoint(self, force=False):
         if self.checkpoint_fn is None or self.best is None:
             return
@@ -122,15 +139,18 @@ class Search:
         lower total U (an infeasible phase only occurs while bootstrapping a hard task)."""
         feas = [self.feasible_q(gi, qs[gi]) for gi in range(self.t.P)]
         U, fs = self.plan_total(qs)
-        nbad = feas.count(False)
+        # with --capacity a plan that exhausts a group counts as one more infeasible "phase"
+        cap_bad = 0 if self.capacity_ok(qs) else 1
+        nbad = feas.count(False) + cap_bad
         if self.best is not None and not force:
-            key_old = (self.best["feas"].count(False), self.best["U"])
+            key_old = (self.best["feas"].count(False) + self.best.get("cap_bad", 0), self.best["U"])
             if (nbad, U) >= (key_old[0], key_old[1] - 1e-12):
                 return False
             if nbad > 0 and nbad == key_old[0]:
                 return False
         old = None if self.best is None else self.best["U"]
-        self.best = dict(U=U, qs=[q.copy() for q in qs], fs=fs, origin=list(origins), feas=feas)
+        self.best = dict(U=U, qs=[q.copy() for q in qs], fs=fs, origin=list(origins), feas=feas,
+                         cap_bad=cap_bad)
         self.best["total_u"] = self.plan_u(qs) if self.zones else U
         self.log(f"[{self.key} {self.elapsed():7.1f}s] best {U:.10g} (was {old}) by {label}"
                  + (f" [total U {self.best['total_u']:.8g}]" if self.zones else "")
@@ -157,7 +177,7 @@ class Search:
         for x in cands:
             qs, _ = nlp.split(x)
             qs = [np.clip(q, self.b.lower, self.b.upper) for q in qs]
-            if all(self.feasible_q(gi, qs[gi]) for gi in range(self.t.P)):
+            if all(self.feasible_q(gi, qs[gi]) for gi in range(self.t.P)) and self.capacity_ok(qs):
                 U, _ = self.plan_total(qs)
                 if best is None or U < best[0]:
                     best = (U, qs)
@@ -199,6 +219,8 @@ class Search:
             qs = [qq.copy() for qq in self.best["qs"]]
             qs[gi] = q
             U, _ = self.plan_total(qs)
+            # with --capacity: plans meeting it first (a bootstrap plan may not yet)
+            U = (0 if self.capacity_ok(qs) else 1, U)
             if out is None or U < out[0]:
                 out = (U, q, lab)
         if out is not None:
@@ -379,6 +401,8 @@ class Search:
             return np.inf
         qs = [qq.copy() for qq in self.best["qs"]]
         qs[gi] = q
+        if not self.capacity_ok(qs):
+            return np.inf
         return self.plan_total(qs)[0]
 
     def polish(self, label, sweeps=3):
@@ -440,6 +464,14 @@ class Search:
                 joint_local_optima_objectives=sorted(o for o, _, _ in self.joint_optima),
                 checkpoint=light,
             )
+        if self.capacity:
+            qs = list(self.best["qs"])
+            fs = [self.full.pm[gi].loads_from_q(q) for gi, q in enumerate(qs)]
+            cap = self.full.capacity_rows(self.full.pack(qs, fs))
+            extra.update(capacity_on=True,
+                         capacity_note="rows: step-end capacity (first and last cycle) - load - 0.02 "
+                                       "per half-joint and step holding a phase posture; >= 0 when met",
+                         capacity_min_slack=float(cap.min()) if len(cap) else None)
         return dict(
             task=t.key,
             task_name=t.name,
@@ -541,6 +573,10 @@ def main():
     ap.add_argument("--zones", action="store_true",
                     help="posture zones (elastic) and gaze on; objective ln(U + 1e-3) + 10 sum v; "
                          "results go to results_zones/ unless --out is given")
+    ap.add_argument("--capacity", action="store_true",
+                    help="capacity constraint of statement section 4 (each half-joint's load in a "
+                         "phase <= min step-end capacity over the first and last cycle - 0.02) in "
+                         "every NLP; off by default (results before 2026-12-08 are without it)")
     ap.add_argument("--checkpoint-every", type=float, default=100.0)
     ap.add_argument("--rerun-joint", action="store_true",
                     help="with --resume: drop the previous run's whole-plan local optima (relabel "
@@ -592,7 +628,7 @@ def main():
 
     s = Search(key, a.budget, log=log, n_random=a.random, resume=a.resume, seed_offset=a.seed_offset,
                zones=a.zones, checkpoint=checkpoint, checkpoint_every=a.checkpoint_every,
-               rerun_joint=a.rerun_joint, joint_fraction=a.joint_fraction,
+               rerun_joint=a.rerun_joint, joint_fraction=a.joint_fraction, capacity=a.capacity,
                families=None if not a.families else [f.strip() for f in a.families.split(",")])
     S.PROGRESS_HOOK = s.maybe_checkpoint
     if a.pool_swap_only:

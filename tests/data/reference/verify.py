@@ -27,7 +27,9 @@
    differences, and the feasibility report (a box on the trunk violates, one at a hand does not);
 10. a free hand's upper arm (statement of 2026-12-07, session 15): the arm row of a hand the
    phase gives no target limited to min(hold's limit, 10 deg) (shelf, bench_assembly: the left;
-   shelf_two_hands: neither), the row's value at and past it, both limits in the evaluation.
+   shelf_two_hands: neither), the row's value at and past it, both limits in the evaluation;
+11. capacity (statement section 4, option --capacity): the rows vs a brute-force replay of every
+   cycle, and their Jacobian vs central finite differences (joint and per-phase NLP).
 """
 import json
 import math
@@ -1512,6 +1514,110 @@ def check_free_arm_limit():
         "a hand without a target, the other arm and rows unchanged, evaluate reports both", out, ok)
 
 
+def check_capacity():
+    """11. capacity constraint (statement section 4, "capacity (no muscle group gives out)", option
+    --capacity): (a) the rows' per (phase, half-joint) minimum of step-end capacities (closed form,
+    first and last cycle) vs a brute-force replay of every step of every cycle with the
+    closed-form step; (b) the rows' Jacobian (complex step) vs central finite differences, for the
+    joint NLP and a per-phase NLP (other phases' loads fixed)."""
+    import time
+    key = "shelf_two_hands"
+    t = M.load_task(key)
+    pr = M.Problem(t)
+    pr.capacity = True
+    nlp = JointNLP(pr)
+    rng = np.random.default_rng(7)
+    fams = list(S.FAMILIES)
+    worst_v, worst_row, worst_j, worst_jp, times = 0.0, 0.0, 0.0, 0.0, []
+    ns = len(t.step_idx)
+    ncyc = 2 if t.cycles > 1 else 1
+    for trial in range(4):
+        qs = [np.clip(S.template(t.body, t.rest_q, S.FAMILIES[fams[(trial + gi) % len(fams)]], rng),
+                      t.body.lower, t.body.upper) for gi in range(t.P)]
+        # loads scaled so that capacities fall well below 1 but the task is not all exhausted
+        fs = [np.clip(nlp.pm[gi].loads_from_q(q), 0.0, 0.6) + rng.uniform(0.0, 0.05, t.body.H)
+              for gi, q in enumerate(qs)]
+        x = np.concatenate(list(qs) + list(fs))
+        t0 = time.perf_counter()
+        val = nlp.capacity_rows(x)
+        times.append(time.perf_counter() - t0)
+        # brute force: replay all cycles, min step-end capacity per (phase, half-joint)
+        H = t.body.H
+        L = np.vstack(fs + [pr.rest_loads])
+        c = np.ones(H)
+        cmin = np.full((t.P, H), np.inf)
+        for cyc in range(t.cycles):
+            for s_, (row, T) in enumerate(zip(t.step_idx, t.step_dur)):
+                for h in range(H):
+                    c[h] = fat.step_real(c[h], L[row, h], t.ks[h], T, t.r_rest, t.f_lim)[0]
+                if row < t.P:
+                    cmin[row] = np.minimum(cmin[row], c)
+        # rows -> capacities; min per (phase, half-joint)
+        cap = np.full((t.P, H), np.inf)
+        r = 0
+        for s_ in range(ns):
+            p = t.step_idx[s_]
+            if p >= t.P:
+                continue
+            for n in range(ncyc):
+                cap[p] = np.minimum(cap[p], val[r:r + H] + L[p] + 0.02)
+                r += H
+        worst_v = max(worst_v, float(np.max(np.abs(cap - cmin))))
+        # one row directly: last cycle, first step
+        worst_row = max(worst_row, float(np.max(np.abs((val[H:2 * H] + L[t.step_idx[0]] + 0.02)
+                                                       - _replay_step_end(t, L, 0)))))
+        # (b) Jacobian vs central differences over the load columns (q columns must be zero)
+        v0, J = nlp.capacity_rows(x, jac=True)
+        k, nq = nlp.k, t.body.nq
+        hstep = 1e-6
+        FD = np.zeros_like(J)
+        for j in range(k * nq, k * (nq + H)):
+            xp = x.copy()
+            xp[j] += hstep
+            xm = x.copy()
+            xm[j] -= hstep
+            FD[:, j] = (nlp.capacity_rows(xp) - nlp.capacity_rows(xm)) / (2 * hstep)
+        worst_j = max(worst_j, float(np.max(np.abs(J - FD))), float(np.max(np.abs(J[:, :k * nq]))))
+        # per-phase NLP (phase trial % P optimised, the others fixed at fs)
+        gi = trial % t.P
+        pn = JointNLP(pr, phases=[gi])
+        pn.fixed_loads = fs
+        xg = np.concatenate([qs[gi], fs[gi]])
+        vg, Jg = pn.capacity_rows(xg, jac=True)
+        FDg = np.zeros_like(Jg)
+        for j in range(nq, nq + H):
+            xp = xg.copy()
+            xp[j] += hstep
+            xm = xg.copy()
+            xm[j] -= hstep
+            FDg[:, j] = (pn.capacity_rows(xp) - pn.capacity_rows(xm)) / (2 * hstep)
+        worst_jp = max(worst_jp, float(np.max(np.abs(Jg - FDg))),
+                       float(np.max(np.abs(np.sort(vg) - np.sort(v0)))))
+    rec(f"capacity rows ({key}, {t.cycles} cycles, 4 random postures): min step-end capacity per "
+        "(phase, half-joint) from the closed form (first and last cycle) vs brute-force replay of "
+        "every cycle (max abs err)", worst_v, worst_v < 1e-9)
+    rec("capacity rows: last-cycle step-end capacity of the first step vs replay (max abs err)",
+        worst_row, worst_row < 1e-9)
+    rec("capacity rows: Jacobian (complex step) vs central FD, joint NLP (max abs err; q columns 0)",
+        worst_j, worst_j < 1e-6)
+    rec("capacity rows: per-phase NLP Jacobian vs central FD and same rows as the joint NLP "
+        "(max abs err)", worst_jp, worst_jp < 1e-6)
+    rec("capacity rows: time of one evaluation (value only) [s], rows per evaluation",
+        [float(np.median(times)), int(len(val))], True)
+
+
+def _replay_step_end(t, L, s0):
+    """Capacity at the end of step s0 of the last cycle, by replaying every step."""
+    H = L.shape[1]
+    c = np.ones(H)
+    for cyc in range(t.cycles):
+        for s_, (row, T) in enumerate(zip(t.step_idx, t.step_dur)):
+            for h in range(H):
+                c[h] = fat.step_real(c[h], L[row, h], t.ks[h], T, t.r_rest, t.f_lim)[0]
+            if cyc == t.cycles - 1 and s_ == s0:
+                return c.copy()
+
+
 if __name__ == "__main__":
     check_fatigue()
     check_fatigue_grad()
@@ -1527,6 +1633,7 @@ if __name__ == "__main__":
     check_turn_rows()
     check_held_objects()
     check_free_arm_limit()
+    check_capacity()
     here = os.path.dirname(os.path.abspath(__file__))
     out = os.path.join(here, "results", "verification.json")
     if "--out" in sys.argv:

@@ -227,3 +227,57 @@ def simulate_fwd(loads, ks, step_idx, step_dur, cycles, r_rest, f_lim, nvar):
                 c = cTv
                 U[h] += dUv
     return U, G
+
+
+# ----------------------------------------------------------------------------------------------
+# capacity constraint (statement section 4, bullet "capacity (no muscle group gives out)")
+# ----------------------------------------------------------------------------------------------
+@njit(cache=True)
+def capacity_ends(loads, ks, step_idx, step_dur, cycles, r_rest, f_lim):
+    """Capacity at the end of every step of the first and of the last cycle, in closed form.
+
+    A step is affine in its start capacity, c -> alpha c + beta with alpha = e^{-lam T} and
+    beta = a (1 - alpha); so is a cycle, c -> A c + B, and n cycles from c = 1 give
+    c_n = A^n + B (1 + A + .. + A^{n-1}) with A = e^{-Lam}, Lam = sum lam T, and the geometric sum
+    written as expm1(-n Lam) / expm1(-Lam) (n when Lam = 0). Complex-safe (complex-step
+    derivatives). Returns C[ns, 2, H]: [:, 0] first cycle, [:, 1] last cycle."""
+    H = loads.shape[1]
+    ns = step_idx.shape[0]
+    C = np.zeros((ns, 2, H), dtype=np.complex128)
+    al = np.zeros(ns, dtype=np.complex128)
+    be = np.zeros(ns, dtype=np.complex128)
+    for h in range(H):
+        Lam = 0.0 + 0.0j
+        for s in range(ns):
+            f = loads[step_idx[s], h]
+            T = step_dur[s]
+            R = recovery_rate(f, r_rest, f_lim)
+            lam = ks[h] * f + R
+            if abs(lam) == 0.0:
+                al[s] = 1.0 + 0.0 * f
+                be[s] = 0.0 * f
+            else:
+                e = _expm1c(-lam * T)        # alpha - 1
+                al[s] = 1.0 + e
+                be[s] = -(R / lam) * e
+            Lam += lam * T
+        B = 0.0 + 0.0j
+        for s in range(ns):
+            B = al[s] * B + be[s]
+        m = cycles - 1
+        if m == 0:
+            cstart = 1.0 + 0.0j
+        else:
+            if abs(Lam) < 1e-12:
+                geo = m + 0.0j
+            else:
+                geo = _expm1c(-m * Lam) / _expm1c(-Lam)
+            cstart = cmath.exp(-m * Lam) + B * geo
+        c1 = 1.0 + 0.0j
+        cn = cstart
+        for s in range(ns):
+            c1 = al[s] * c1 + be[s]
+            cn = al[s] * cn + be[s]
+            C[s, 0, h] = c1
+            C[s, 1, h] = cn
+    return C

@@ -224,6 +224,46 @@ class JointNLP:
         self.cycles_override = None
         self._vcache = None
         self._gcache = None
+        # capacity rows (statement section 4, "capacity"): on when prob.capacity is set
+        self.capacity = bool(getattr(prob, "capacity", False))
+
+    CAP_MARGIN = 0.02
+
+    def capacity_rows(self, x, jac=False):
+        """Rows c_{s,n}[h] - f_{p(s)}[h] - 0.02 >= 0 for every step s holding a phase's posture
+        (rest excluded), n in {first, last cycle} (one if cycles == 1), every half-joint h; the
+        capacities from fat.capacity_ends (closed form). Derivative wrt the loads by the complex
+        step (whole load row at once: half-joints are independent), as simulate_grad does; zero
+        wrt q and the zone slacks. Jx has the full width n."""
+        t = self.task
+        qs, fs = self.split(x)
+        L, step_idx = self._fatigue_args(fs)
+        P = t.P
+        steps = np.where(step_idx < P)[0]          # permuted row index < P: a phase, not rest
+        ncyc = 2 if t.cycles > 1 else 1
+        Lc = L.astype(np.complex128)
+        C = fat.capacity_ends(Lc, t.ks, step_idx, t.step_dur, t.cycles, t.r_rest, t.f_lim)
+        H = L.shape[1]
+        val = np.concatenate([C[s, n].real - L[step_idx[s]] - self.CAP_MARGIN
+                              for s in steps for n in range(ncyc)]) if len(steps) else np.zeros(0)
+        if not jac:
+            return val
+        nq, k = self.body.nq, self.k
+        Jx = np.zeros((len(val), self.n))
+        hs = 1e-30
+        for i in range(k):                          # permuted row i = optimised phase i
+            Lp = Lc.copy()
+            Lp[i] += 1j * hs
+            Cp = fat.capacity_ends(Lp, t.ks, step_idx, t.step_dur, t.cycles, t.r_rest, t.f_lim)
+            r = 0
+            for s in steps:
+                for n in range(ncyc):
+                    d = Cp[s, n].imag / hs
+                    if step_idx[s] == i:
+                        d = d - 1.0
+                    Jx[r + np.arange(H), k * nq + i * H + np.arange(H)] = d
+                    r += H
+        return val, Jx
 
     def split(self, x):
         nq, H, k = self.body.nq, self.body.H, self.k
@@ -369,6 +409,8 @@ class JointNLP:
             if self.zones:
                 # elastic zone rows: v_i - g_i(q) >= 0
                 out.append(vs[i] - self.prob.zm.rows(qs[i], self.prob.zone_limits[gi]))
+        if self.capacity and self.weights is None:
+            out.append(self.capacity_rows(x))
         return np.concatenate(out)
 
     def ineq_jac(self, x):
@@ -386,4 +428,6 @@ class JointNLP:
                 Bz[:, i * nq:(i + 1) * nq] = -Jg
                 Bz[:, self.v_cols(i)] = np.eye(self.nz)
                 blocks.append(Bz)
+        if self.capacity and self.weights is None:
+            blocks.append(self.capacity_rows(x, jac=True)[1])
         return np.vstack(blocks)

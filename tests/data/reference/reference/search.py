@@ -255,6 +255,15 @@ def _structure(nlp, x):
             rows += [rr] * len(cidx)
             cols += cidx
         r0 += m
+    if getattr(nlp, "capacity", False) and nlp.weights is None:
+        # capacity rows: each depends on the loads of every optimised phase (dense in f)
+        m = len(nlp.capacity_rows(x))
+        cidx = list(range(k * nq, k * nq + k * H))
+        for rr in range(r0, r0 + m):
+            rows += [rr] * len(cidx)
+            cols += cidx
+        r0 += m
+        blocks_in.append(m)
     return np.array(rows), np.array(cols), sum(blocks_eq), sum(blocks_in)
 
 
